@@ -1,0 +1,161 @@
+#include "core/capture.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+
+namespace rm {
+
+namespace {
+
+bool is_float_format(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".exr" || ext == ".hdr";
+}
+
+fs::path temporary_sibling(const fs::path& path) {
+  static std::atomic<unsigned> counter{0};
+  return path.parent_path() / ("." + path.stem().string() + ".tmp-" + std::to_string(getpid()) + "-" +
+                               std::to_string(counter++) + path.extension().string());
+}
+
+fs::path numbered(const fs::path& path, int n) {
+  return path.parent_path() / (path.stem().string() + "-" + std::to_string(n) + path.extension().string());
+}
+
+// Moves `from` to `to` only if `to` does not exist yet (atomic on Linux).
+bool rename_no_replace(const fs::path& from, const fs::path& to, int* err) {
+  if (renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return true;
+  if (errno != EINVAL && errno != ENOSYS) {
+    *err = errno;
+    return false;
+  }
+  // File systems without RENAME_NOREPLACE: link() also refuses to replace.
+  if (link(from.c_str(), to.c_str()) != 0) {
+    *err = errno;
+    return false;
+  }
+  unlink(from.c_str());
+  return true;
+}
+
+}  // namespace
+
+std::optional<std::string> check_output_path(const fs::path& path) {
+  if (path.extension().empty()) return "'" + path.string() + "' has no extension to choose an image format (use .png or .exr)";
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) {
+    OIIO::geterror();  // clear OIIO's pending message
+    return "'" + path.string() + "': unknown image format '" + path.extension().string() + "' (use .png or .exr)";
+  }
+  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return "'" + path.string() + "': directory '" + dir.string() + "' does not exist";
+  if (access(dir.c_str(), W_OK) != 0) return "'" + path.string() + "': directory '" + dir.string() + "' is not writable";
+  return std::nullopt;
+}
+
+std::optional<fs::path> write_image(const fs::path& path, const Image& image, const Metadata& metadata,
+                                    Overwrite overwrite, std::string* error) {
+  if (auto problem = check_output_path(path)) {
+    *error = *problem;
+    return std::nullopt;
+  }
+  const bool as_float = is_float_format(path);
+  OIIO::ImageSpec spec(image.width, image.height, 4, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.attribute("Software", "raymarching " RM_VERSION);
+  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+
+  const fs::path temp = temporary_sibling(path);
+  auto out = OIIO::ImageOutput::create(temp.string());
+  bool ok = out && out->open(temp.string(), spec);
+  if (ok) {
+    if (as_float) {
+      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
+    } else {
+      std::vector<unsigned char> bytes(image.rgba.size());
+      std::transform(image.rgba.begin(), image.rgba.end(), bytes.begin(), [](float v) {
+        v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+        return static_cast<unsigned char>(v * 255.0f + 0.5f);
+      });
+      ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    }
+    ok = out->close() && ok;
+  }
+  if (!ok) {
+    *error = "cannot write '" + path.string() + "': " + (out ? out->geterror() : OIIO::geterror());
+    if (error->back() == ' ') error->pop_back();
+    std::error_code ec;
+    fs::remove(temp, ec);
+    return std::nullopt;
+  }
+
+  if (overwrite == Overwrite::Replace) {
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    if (!ec) return path;
+    *error = "cannot write '" + path.string() + "': " + ec.message();
+  } else {
+    for (int n = 0; n < 1000; ++n) {
+      const fs::path target = n == 0 ? path : numbered(path, n);
+      int err = 0;
+      if (rename_no_replace(temp, target, &err)) return target;
+      if (err != EEXIST) {
+        *error = "cannot write '" + target.string() + "': " + std::strerror(err);
+        break;
+      }
+    }
+    if (error->empty()) *error = "cannot write '" + path.string() + "': too many files of that name";
+  }
+  std::error_code ec;
+  fs::remove(temp, ec);
+  return std::nullopt;
+}
+
+Metadata frame_metadata(const fs::path& scene, const FrameInputs& in) {
+  auto num = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return std::string(buf);
+  };
+  const auto& m = in.mouse;
+  const std::string mouse = num(m.x) + "," + num(m.y) + "," + num(m.z) + "," + num(m.w);
+  const int seconds = static_cast<int>(in.date.w);
+  char date[64];
+  std::snprintf(date, sizeof date, "%04d-%02d-%02dT%02d:%02d:%06.3f", static_cast<int>(in.date.x),
+                static_cast<int>(in.date.y) + 1, static_cast<int>(in.date.z), seconds / 3600, seconds / 60 % 60,
+                std::fmod(static_cast<double>(in.date.w), 60.0));
+  const std::string size = std::to_string(static_cast<int>(in.resolution.x)) + "x" +
+                           std::to_string(static_cast<int>(in.resolution.y));
+  return {
+      {"raymarching:scene", fs::absolute(scene).lexically_normal().string()},
+      {"raymarching:iTime", num(in.time)},
+      {"raymarching:iFrame", std::to_string(in.frame)},
+      {"raymarching:iMouse", mouse},
+      {"raymarching:iDate", date},
+      {"ImageDescription", "raymarching render " + scene.string() + " --size " + size + " --time " + num(in.time) +
+                               " --frame " + std::to_string(in.frame) + " --mouse " + mouse + " --date " + date},
+  };
+}
+
+Metadata read_metadata(const fs::path& path) {
+  Metadata out;
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) {
+    OIIO::geterror();
+    return out;
+  }
+  for (const auto& p : in->spec().extra_attribs)
+    if (p.type() == OIIO::TypeDesc::STRING) out.emplace_back(p.name().string(), p.get_string());
+  return out;
+}
+
+}  // namespace rm

@@ -1,0 +1,40 @@
+// Capture: writes pictures through OpenImageIO. Files appear whole or not at
+// all: the pixels go to a temporary name in the same directory, which is then
+// renamed. PNG and other 8-bit formats get the output clamped to [0,1]; EXR
+// and HDR keep the raw floats.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/renderer.h"
+
+namespace rm {
+
+namespace fs = std::filesystem;
+
+// Attributes stored in the file, e.g. {"raymarching:iTime", "1.5"}.
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+enum class Overwrite { Replace, Never };
+
+// Returns an error message, or nullopt when `path` names a format we can
+// write and a directory that exists. Cheap: call it before rendering.
+std::optional<std::string> check_output_path(const fs::path& path);
+
+// Writes `image` to `path`. With Overwrite::Never an existing file is kept
+// and "-1", "-2", ... is added before the extension. Returns the path
+// written, or nullopt with *error set; on failure no file is left behind.
+std::optional<fs::path> write_image(const fs::path& path, const Image& image, const Metadata& metadata,
+                                    Overwrite overwrite, std::string* error);
+
+// What a picture needs to be reproduced: scene, inputs, and the `render`
+// command line that makes it again (stored as ImageDescription).
+Metadata frame_metadata(const fs::path& scene, const FrameInputs& inputs);
+
+// Reads metadata attributes back (for tests and for reproducing a shot).
+Metadata read_metadata(const fs::path& path);
+
+}  // namespace rm

@@ -1,0 +1,40 @@
+// Channels: the four iChannel textures. Images load through OpenImageIO; an
+// unset channel is a 1x1 transparent black texture with resolution 0, as on
+// Shadertoy, never uninitialised memory.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/gl.h"
+
+namespace rm {
+
+// Pixels decoded from an image file, RGBA float, bottom row first (GL order).
+struct ChannelImage {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;
+};
+
+// Decodes an image file; returns nullopt and sets *error on failure. No GL needed.
+std::optional<ChannelImage> load_channel_image(const std::filesystem::path& path, std::string* error);
+
+class Channels {
+ public:
+  static constexpr int kCount = 4;
+  Channels();  // needs a current GL context
+  void set(int index, const ChannelImage& image);
+  GLuint texture(int index) const { return textures_[static_cast<size_t>(index)].get(); }
+  glm::vec3 resolution(int index) const { return resolution_[static_cast<size_t>(index)]; }
+
+ private:
+  std::array<gl::Texture, kCount> textures_;
+  std::array<glm::vec3, kCount> resolution_{};
+};
+
+}  // namespace rm

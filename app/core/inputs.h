@@ -1,0 +1,70 @@
+// Inputs: the values a frame hands to the shader, with Shadertoy's semantics,
+// plus the small state machines (mouse, clock) the window drives them with.
+#pragma once
+#include <algorithm>
+#include <chrono>
+
+#include <glm/glm.hpp>
+
+namespace rm {
+
+struct FrameInputs {
+  glm::vec3 resolution{1.0f, 1.0f, 1.0f};  // z is the pixel aspect ratio: 1
+  float time = 0.0f;
+  float time_delta = 1.0f / 60.0f;
+  float frame_rate = 60.0f;
+  int frame = 0;
+  glm::vec4 mouse{0.0f};                   // Shadertoy iMouse
+  glm::vec2 cursor{0.0f};                  // glslViewer u_mouse: the pointer, button or not
+  glm::vec4 date{0.0f};                    // year, month from 0, day, seconds since midnight
+  float sample_rate = 44100.0f;
+  glm::vec2 frag_coord_offset{0.0f};       // tile origin when rendering in tiles
+};
+
+// Shadertoy's iMouse: xy follows the pointer while the left button is held and
+// stays after release; zw is the press position; z > 0 while held, negated
+// after release; w > 0 only in the frame of the press.
+class MouseState {
+ public:
+  void press(glm::vec2 position);
+  void move(glm::vec2 position);  // any pointer motion; xy only follows while held
+  void release();
+  void end_frame();               // call after each rendered frame
+  glm::vec4 imouse() const;
+  glm::vec2 cursor() const { return cursor_; }
+  bool held() const { return held_; }
+
+ private:
+  glm::vec2 position_{0.0f};
+  glm::vec2 click_{0.0f};
+  glm::vec2 cursor_{0.0f};
+  bool held_ = false;
+  bool clicked_this_frame_ = false;
+};
+
+// The shader clock: pausable, restartable, steppable while paused.
+class ShaderClock {
+ public:
+  using Clock = std::chrono::steady_clock;
+  explicit ShaderClock(Clock::time_point now = Clock::now()) : last_(now) {}
+  // Advances to now; returns the delta in seconds (0 while paused).
+  float tick(Clock::time_point now = Clock::now());
+  void set_paused(bool paused) { paused_ = paused; }
+  bool paused() const { return paused_; }
+  void restart() { time_ = 0.0; frame_ = 0; }
+  void step(double seconds) { time_ = std::max(0.0, time_ + seconds); }
+  void next_frame() { ++frame_; }
+  double time() const { return time_; }
+  int frame() const { return frame_; }
+
+ private:
+  Clock::time_point last_;
+  double time_ = 0.0;
+  int frame_ = 0;
+  bool paused_ = false;
+};
+
+// iDate for a wall-clock instant, in local time.
+glm::vec4 date_of(std::chrono::system_clock::time_point when);
+
+}  // namespace rm

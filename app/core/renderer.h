@@ -1,0 +1,56 @@
+// Renderer: draws one frame of a program with given inputs, on screen or into
+// an offscreen float target, and reads pictures back.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/channels.h"
+#include "core/gl.h"
+#include "core/inputs.h"
+#include "core/program.h"
+
+namespace rm {
+
+// A picture read back from GL: RGBA float, top row first (as files store it).
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;
+  const float* pixel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+};
+
+// An offscreen RGBA32F framebuffer, so EXR output keeps unclamped floats.
+class RenderTarget {
+ public:
+  RenderTarget(int width, int height);
+  void bind() const;
+  Image read() const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  int width_, height_;
+  gl::Texture color_;
+  gl::Framebuffer fbo_;
+};
+
+class Renderer {
+ public:
+  Renderer();  // needs a current GL context
+  // Sets every input the program reads and draws over the bound framebuffer's
+  // (0,0,size) viewport.
+  void draw(const Program& program, const FrameInputs& inputs, const Channels& channels, glm::ivec2 size) const;
+
+  // Renders offscreen at `size`, in tiles no larger than the driver allows;
+  // tiling shifts fragCoord, which only the Shadertoy wrapper honours, so
+  // callers check supports_tiles() first.
+  Image render_image(const Program& program, FrameInputs inputs, const Channels& channels, glm::ivec2 size) const;
+  int max_tile() const { return max_tile_; }
+
+ private:
+  gl::VertexArray vao_;
+  int max_tile_ = 4096;
+};
+
+}  // namespace rm

@@ -1,0 +1,48 @@
+#include "core/scene.h"
+
+#include "core/check.h"
+
+namespace rm {
+
+Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags) {
+  Source source = preprocess(path, options);
+  if (!source.ok()) {
+    *diags = source.errors;
+    return source;
+  }
+  *diags = validate(source);
+  return source;
+}
+
+Scene::Scene(fs::path path, SourceOptions options) : path_(std::move(path)), options_(std::move(options)) {}
+
+ReloadStatus Scene::reload() {
+  Diagnostics diags;
+  Source source = preprocess(path_, options_);
+  watch_ = source.watch;
+  if (source.ok() && attempted_ && source.text == attempted_text_) return ReloadStatus::Unchanged;
+  attempted_ = source.ok();
+  attempted_text_ = source.ok() ? source.text : std::string();
+  if (!source.ok()) {
+    diagnostics_ = source.errors;
+    return ReloadStatus::Failed;
+  }
+  diags = validate(source);
+  if (count_errors(diags) > 0) {
+    diagnostics_ = std::move(diags);
+    return ReloadStatus::Failed;
+  }
+  Diagnostics driver;
+  std::optional<Program> built = Program::build(source, &driver);
+  if (!built) {
+    diagnostics_ = std::move(driver);
+    return ReloadStatus::Failed;
+  }
+  program_ = std::move(built);
+  good_source_ = std::move(source);
+  diagnostics_ = std::move(diags);  // warnings only
+  ++generation_;
+  return ReloadStatus::Swapped;
+}
+
+}  // namespace rm

@@ -1,0 +1,50 @@
+// Scene: one shader file and what it includes, kept as the last program that
+// validated, compiled and linked. A failed reload never replaces it.
+#pragma once
+#include <optional>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "core/program.h"
+#include "core/source.h"
+
+namespace rm {
+
+enum class ReloadStatus {
+  Swapped,    // a new program is running
+  Unchanged,  // the combined source is the same as last attempt: nothing done
+  Failed,     // errors; the previous program (if any) keeps running
+};
+
+// Preprocesses and validates with glslang: all that `check` does, no GL.
+Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags);
+
+class Scene {
+ public:
+  Scene(fs::path path, SourceOptions options);
+
+  // Re-reads the files; needs a current GL context.
+  ReloadStatus reload();
+
+  const Program* program() const { return program_ ? &*program_ : nullptr; }
+  const Source& source() const { return good_source_; }  // of the running program
+  const fs::path& path() const { return path_; }
+  // Errors of the latest attempt; empty after a good load.
+  const Diagnostics& diagnostics() const { return diagnostics_; }
+  // Every file of the latest attempt, including includes not found yet.
+  const std::vector<fs::path>& watch_list() const { return watch_; }
+  int generation() const { return generation_; }  // counts swaps
+
+ private:
+  fs::path path_;
+  SourceOptions options_;
+  std::optional<Program> program_;
+  Source good_source_;
+  std::string attempted_text_;
+  bool attempted_ = false;
+  Diagnostics diagnostics_;
+  std::vector<fs::path> watch_;
+  int generation_ = 0;
+};
+
+}  // namespace rm

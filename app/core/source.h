@@ -1,0 +1,75 @@
+// Source: turns a scene file into one GLSL string the driver accepts, and
+// remembers where every line of that string came from.
+//
+// Preprocessing resolves #include (relative to the including file, then -I
+// dirs, <rm/...> from the bundled shaderlib), includes each file once, strips
+// a UTF-8 byte-order mark, and wraps the three kinds of shader we accept
+// (Shadertoy mainImage, complete #version+main, glslViewer-style legacy GLSL)
+// so that they run unmodified on an OpenGL 4.5 core context. The host's own
+// lines are tracked in the line map too, so they never shift user lines.
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/diagnostics.h"
+
+namespace rm {
+
+namespace fs = std::filesystem;
+
+enum class ShaderKind {
+  Shadertoy,  // defines mainImage(out vec4, in vec2); the host adds main()
+  Complete,   // has its own modern #version and main()
+  Legacy,     // glslViewer / Book of Shaders: no or old #version, gl_FragColor
+};
+const char* to_string(ShaderKind kind);
+
+// Where one line of the final source came from. file < 0 marks host lines.
+struct Origin {
+  int file = -1;
+  int line = 0;
+};
+
+struct Define {
+  std::string name;
+  std::string value;  // empty means "1", as -DNAME does in a compiler
+};
+
+struct SourceOptions {
+  std::vector<fs::path> include_dirs;  // -I, searched after the including file's dir
+  fs::path shaderlib_dir;              // root that holds rm/, for <rm/...>
+  std::vector<Define> defines;         // -D, placed right after #version
+};
+
+// File access, injectable so tests and fuzzers can use an in-memory tree.
+struct FileSystem {
+  // The file's bytes, or nullopt with *error set ("no such file", "is a directory", ...).
+  std::function<std::optional<std::string>(const fs::path&, std::string* error)> read;
+  std::function<bool(const fs::path&)> exists;
+};
+FileSystem disk_file_system();
+
+struct Source {
+  std::string text;                // the final GLSL handed to glslang and the driver
+  std::vector<fs::path> files;     // every file read (index = Origin::file); [0] is the scene
+  std::vector<fs::path> watch;     // files whose change should reload, incl. missing includes
+  std::vector<Origin> line_map;    // one entry per line of text (0-based index)
+  ShaderKind kind = ShaderKind::Shadertoy;
+  std::string version_line;        // the #version line the final text starts with
+  Diagnostics errors;              // preprocessing errors; text is unusable if any
+
+  bool ok() const { return errors.empty(); }
+  // Maps a 1-based line of text to the user's file and line.
+  std::pair<std::string, int> locate(int final_line) const;
+  // The final source's line (1-based), or "" when out of range.
+  std::string final_line_text(int final_line) const;
+};
+
+Source preprocess(const fs::path& scene, const SourceOptions& options,
+                  const FileSystem& fs = disk_file_system());
+
+}  // namespace rm

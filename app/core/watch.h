@@ -1,0 +1,57 @@
+// Watch: tells when the files of a scene have changed and settled.
+//
+// The directories of the files are watched, not the files, so saves that
+// replace a file (write a temporary and rename it over the original, as vim,
+// VS Code, JetBrains and `sed -i` do), delete-then-recreate and `git
+// checkout` are all seen. Bursts are debounced into one change, and a file
+// still open for writing is waited for, so a half-written file is not read.
+// inotify on Linux; polling of mtime (ns) and size behind the same interface.
+#pragma once
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <vector>
+
+namespace rm {
+
+namespace fs = std::filesystem;
+using WatchClock = std::chrono::steady_clock;
+
+struct WatchTiming {
+  std::chrono::milliseconds quiet{15};            // no event for this long ends a burst
+  std::chrono::milliseconds open_write_limit{1000};  // longest wait for a writer to close
+  std::chrono::milliseconds missing_grace{300};   // wait this long for a deleted file to return
+  std::chrono::milliseconds poll_interval{20};    // polling backend only
+};
+
+// The debounce rules both backends share.
+class Debouncer {
+ public:
+  enum class Event { Writing, Closed, Gone };
+  explicit Debouncer(WatchTiming timing) : timing_(timing) {}
+  void note(WatchClock::time_point now, const fs::path& file, Event event);
+  bool settled(WatchClock::time_point now);
+
+ private:
+  WatchTiming timing_;
+  bool pending_ = false;
+  WatchClock::time_point last_{};
+  std::set<fs::path> touched_;
+  std::set<fs::path> writing_;
+};
+
+class Watcher {
+ public:
+  virtual ~Watcher() = default;
+  // Replaces the set of watched files (absolute paths).
+  virtual void watch(const std::vector<fs::path>& files) = 0;
+  // Takes in what happened since the last call; true once per settled change.
+  virtual bool changed(WatchClock::time_point now = WatchClock::now()) = 0;
+  virtual const char* backend() const = 0;
+};
+
+enum class WatchBackend { Auto, Inotify, Poll };
+std::unique_ptr<Watcher> make_watcher(WatchBackend backend = WatchBackend::Auto, WatchTiming timing = {});
+
+}  // namespace rm

@@ -1,0 +1,79 @@
+#include "headless/egl_context.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <vector>
+
+namespace rm {
+
+namespace {
+
+EGLContext make_context(EGLDisplay display) {
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(display, &major, &minor)) return EGL_NO_CONTEXT;
+  if (!eglBindAPI(EGL_OPENGL_API)) return EGL_NO_CONTEXT;
+  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config = nullptr;
+  EGLint count = 0;
+  eglChooseConfig(display, config_attribs, &config, 1, &count);
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                    EGL_NONE};
+  EGLContext context = eglCreateContext(display, count > 0 ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, context_attribs);
+  if (context == EGL_NO_CONTEXT) {
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  // Surfaceless: all rendering goes to framebuffer objects.
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  return context;
+}
+
+std::vector<EGLDisplay> candidate_displays() {
+  std::vector<EGLDisplay> out;
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless"))
+    out.push_back(eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[8];
+    EGLint count = 0;
+    if (eglQueryDevicesEXT(8, devices, &count))
+      for (EGLint i = 0; i < count; ++i)
+        out.push_back(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
+  }
+  out.push_back(eglGetDisplay(EGL_DEFAULT_DISPLAY));
+  return out;
+}
+
+}  // namespace
+
+std::unique_ptr<EglContext> EglContext::create(std::string* error) {
+  for (EGLDisplay display : candidate_displays()) {
+    if (display == EGL_NO_DISPLAY) continue;
+    EGLContext context = make_context(display);
+    if (context == EGL_NO_CONTEXT) continue;
+    auto out = std::unique_ptr<EglContext>(new EglContext());
+    out->display_ = display;
+    out->context_ = context;
+    return out;
+  }
+  *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";
+  return nullptr;
+}
+
+EglContext::~EglContext() {
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  eglDestroyContext(display_, context_);
+  eglTerminate(display_);
+}
+
+std::string EglContext::renderer() const {
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return name ? name : "unknown";
+}
+
+}  // namespace rm

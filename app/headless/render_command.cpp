@@ -1,0 +1,116 @@
+#include "headless/render_command.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <regex>
+
+#include "core/capture.h"
+#include "core/channels.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+#include "headless/egl_context.h"
+
+namespace rm {
+
+namespace {
+
+int fail(const std::string& message, int code) {
+  std::cerr << "raymarching: error: " << message << '\n';
+  return code;
+}
+
+void print_diagnostics(const Diagnostics& diags) { std::cerr << join(diags); }
+
+void show_progress(int done, int total) {
+  if (!isatty(STDERR_FILENO)) return;
+  constexpr int kWidth = 30;
+  const int filled = total ? done * kWidth / total : kWidth;
+  std::fprintf(stderr, "\r[%s%s] %d/%d", std::string(static_cast<size_t>(filled), '#').c_str(),
+               std::string(static_cast<size_t>(kWidth - filled), ' ').c_str(), done, total);
+  if (done == total) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& pattern, int index) {
+  const std::string name = pattern.filename().string();
+  static const std::regex one_counter(R"(^([^%]|%%)*%0?\d{0,2}d([^%]|%%)*$)");
+  if (!std::regex_match(name, one_counter)) return std::nullopt;
+  char buf[4096];
+  std::snprintf(buf, sizeof buf, name.c_str(), index);
+  return pattern.parent_path() / buf;
+}
+
+int check_command(const std::filesystem::path& scene, const SourceOptions& options) {
+  Diagnostics diags;
+  check_scene(scene, options, &diags);
+  print_diagnostics(diags);
+  return count_errors(diags) ? kExitShaderError : kExitOk;
+}
+
+int render_command(const RenderRequest& req) {
+  // Everything that can be known wrong is reported before any GL work.
+  const bool sequence = req.frames > 0;
+  const auto first_out = sequence ? sequence_path(req.out, 0) : std::optional(req.out);
+  if (!first_out)
+    return fail("'" + req.out.string() + "': --frames needs a counter such as %04d in the output name", kExitUsage);
+  if (auto problem = check_output_path(*first_out)) return fail(*problem, kExitUsage);
+  std::array<std::optional<ChannelImage>, Channels::kCount> images;
+  for (int i = 0; i < Channels::kCount; ++i) {
+    const auto& path = req.channels[static_cast<size_t>(i)];
+    if (path.empty()) continue;
+    std::string error;
+    images[static_cast<size_t>(i)] = load_channel_image(path, &error);
+    if (!images[static_cast<size_t>(i)])
+      return fail("--channel" + std::to_string(i) + " '" + path.string() + "': " + error, kExitUsage);
+  }
+
+  Diagnostics diags;
+  check_scene(req.scene, req.source, &diags);
+  print_diagnostics(diags);
+  if (count_errors(diags)) return kExitShaderError;
+
+  std::string error;
+  auto context = EglContext::create(&error);
+  if (!context) return fail(error, kExitUsage);
+  Scene scene(req.scene, req.source);
+  if (scene.reload() != ReloadStatus::Swapped) {
+    print_diagnostics(scene.diagnostics());
+    return kExitShaderError;
+  }
+  Renderer renderer;
+  if (std::max(req.size.x, req.size.y) > renderer.max_tile() && scene.source().kind != ShaderKind::Shadertoy)
+    return fail("--size " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) + " is larger than " +
+                    std::to_string(renderer.max_tile()) + " pixels, which only mainImage shaders can render (in tiles)",
+                kExitUsage);
+  Channels channels;
+  for (int i = 0; i < Channels::kCount; ++i)
+    if (images[static_cast<size_t>(i)]) channels.set(i, *images[static_cast<size_t>(i)]);
+
+  const int count = sequence ? req.frames : 1;
+  const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
+  const auto date = req.date.value_or(std::chrono::system_clock::now());
+  for (int i = 0; i < count; ++i) {
+    FrameInputs in;
+    in.resolution = glm::vec3(req.size, 1.0f);
+    in.time = static_cast<float>(req.time + i / req.fps);
+    in.time_delta = static_cast<float>(1.0 / req.fps);
+    in.frame_rate = static_cast<float>(req.fps);
+    in.frame = first_frame + i;
+    in.mouse = req.mouse;
+    in.cursor = glm::vec2(req.mouse);
+    in.date = date_of(date + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                 std::chrono::duration<double>(i / req.fps)));
+    Image image = renderer.render_image(*scene.program(), in, channels, req.size);
+    const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
+    if (!write_image(out, image, frame_metadata(req.scene, in), Overwrite::Replace, &error)) return fail(error, kExitUsage);
+    if (sequence) show_progress(i + 1, count);
+  }
+  return kExitOk;
+}
+
+}  // namespace rm

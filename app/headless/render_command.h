@@ -1,0 +1,36 @@
+// The headless commands: `render` (a still or a frame sequence through EGL)
+// and `check` (preprocess and validate only, no GL at all).
+#pragma once
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "core/source.h"
+
+namespace rm {
+
+struct RenderRequest {
+  std::filesystem::path scene;
+  SourceOptions source;
+  std::filesystem::path out;  // with a %d counter when frames > 0
+  glm::ivec2 size{640, 360};
+  double time = 0.0;
+  std::optional<int> frame;   // default: the frame the time falls in at `fps`
+  int frames = 0;             // 0: one picture; N: a sequence of N frames
+  double fps = 60.0;
+  glm::vec4 mouse{0.0f};
+  std::array<std::filesystem::path, 4> channels;
+  std::optional<std::chrono::system_clock::time_point> date;  // default: now
+};
+
+int render_command(const RenderRequest& request);
+int check_command(const std::filesystem::path& scene, const SourceOptions& options);
+
+// Expands a printf-style frame counter ("frame_%04d.png"); nullopt if the
+// pattern has no single %d conversion.
+std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& pattern, int index);
+
+}  // namespace rm

@@ -1,0 +1,296 @@
+#include "window/window_app.h"
+
+// epoxy is the GL loader; GLFW must not pull in its own GL header.
+#include "core/gl.h"
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <iostream>
+#include <optional>
+
+#include "core/capture.h"
+#include "core/channels.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+
+namespace rm {
+
+const char* window_keys_help() {
+  return "keys:\n"
+         "  F12          screenshot (PNG, or --shot-format exr)\n"
+         "  Space        pause / resume time\n"
+         "  R            restart time and frame counter\n"
+         "  Left/Right   step time by 1/60 s (while paused)\n"
+         "  F11          toggle fullscreen\n"
+         "  Esc, Q       quit\n"
+         "  F1           print these keys\n"
+         "mouse:\n"
+         "  left drag    iMouse (moves the light in the examples)\n";
+}
+
+namespace {
+
+long long steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string timestamp_now() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  std::tm local{};
+  localtime_r(&t, &local);
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", &local);
+  char out[80];
+  std::snprintf(out, sizeof out, "%s-%03d", buf, static_cast<int>(ms));
+  return out;
+}
+
+class WindowApp {
+ public:
+  WindowApp(const WindowOptions& options, GLFWwindow* window)
+      : options_(options), window_(window), scene_(options.scene, options.source),
+        watcher_(make_watcher(options.watch)) {}
+
+  int run() {
+    for (int i = 0; i < Channels::kCount; ++i) {
+      const auto& path = options_.channels[static_cast<size_t>(i)];
+      if (path.empty()) continue;
+      std::string error;
+      auto image = load_channel_image(path, &error);
+      if (!image) {
+        std::cerr << "raymarching: error: --channel" << i << " '" << path.string() << "': " << error << '\n';
+        return kExitUsage;
+      }
+      channels_.set(i, *image);
+    }
+    load();
+    while (!glfwWindowShouldClose(window_) && !quit_) {
+      glfwPollEvents();
+      if (watcher_->changed()) load();
+      frame();
+    }
+    return kExitOk;
+  }
+
+  void on_mouse_button(int button, int action) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    if (action == GLFW_PRESS) mouse_.press(cursor_pixels());
+    else if (action == GLFW_RELEASE) mouse_.release();
+  }
+  void on_cursor() { mouse_.move(cursor_pixels()); }
+  void on_key(int key, int action, int mods);
+
+ private:
+  // The cursor in framebuffer pixels, origin at the bottom left (GL's).
+  glm::vec2 cursor_pixels() const {
+    double x = 0, y = 0;
+    glfwGetCursorPos(window_, &x, &y);
+    int w = 0, h = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    const double sx = w > 0 ? double(fw) / w : 1.0, sy = h > 0 ? double(fh) / h : 1.0;
+    return {static_cast<float>(x * sx), static_cast<float>(fh - y * sy)};
+  }
+
+  void load() {
+    const ReloadStatus status = scene_.reload();
+    watcher_->watch(scene_.watch_list());
+    if (status == ReloadStatus::Unchanged) return;
+    const Diagnostics& diags = scene_.diagnostics();
+    if (!diags.empty()) std::cerr << join(diags);
+    errors_ = count_errors(diags);
+    if (options_.verbose)
+      std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
+                << scene_.generation() << '\n';
+    update_title(true);
+  }
+
+  void frame() {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    if (width <= 0 || height <= 0) {  // minimised: nothing to draw into
+      glfwWaitEventsTimeout(0.05);
+      clock_.tick();
+      return;
+    }
+    const float delta = clock_.tick();
+    inputs_.resolution = glm::vec3(width, height, 1.0f);
+    inputs_.time = static_cast<float>(clock_.time());
+    inputs_.time_delta = clock_.paused() ? 0.0f : delta;
+    inputs_.frame_rate = delta > 0 ? 1.0f / delta : 60.0f;
+    inputs_.frame = clock_.frame();
+    inputs_.mouse = mouse_.imouse();
+    inputs_.cursor = mouse_.cursor();
+    inputs_.date = date_of(std::chrono::system_clock::now());
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_SCISSOR_TEST);
+    if (const Program* program = scene_.program()) {
+      renderer_.draw(*program, inputs_, channels_, {width, height});
+    } else {
+      glViewport(0, 0, width, height);
+      glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+    }
+    if (errors_ > 0) draw_stale_badge(width, height);
+    if (shot_requested_) {  // before the swap, with this frame's inputs
+      shot_requested_ = false;
+      screenshot();
+    }
+    glfwSwapBuffers(window_);
+    if (options_.verbose && presented_generation_ != scene_.generation()) {
+      presented_generation_ = scene_.generation();
+      std::cerr << "raymarching: presented generation " << presented_generation_ << " at " << steady_ns() << '\n';
+    }
+    mouse_.end_frame();
+    if (!clock_.paused()) clock_.next_frame();
+    frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;
+    update_title(false);
+  }
+
+  // A red frame around the kept picture: the shader on screen is stale.
+  void draw_stale_badge(int width, int height) const {
+    const int b = std::max(3, std::min(width, height) / 100);
+    glEnable(GL_SCISSOR_TEST);
+    glClearColor(0.85f, 0.1f, 0.1f, 1.0f);
+    const int rects[4][4] = {{0, 0, width, b}, {0, height - b, width, b}, {0, 0, b, height}, {width - b, 0, b, height}};
+    for (const auto& r : rects) {
+      glScissor(r[0], r[1], r[2], r[3]);
+      glClear(GL_COLOR_BUFFER_BIT);
+    }
+    glDisable(GL_SCISSOR_TEST);
+  }
+
+  void update_title(bool force) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!force && now - title_updated_ < std::chrono::milliseconds(250)) return;
+    title_updated_ = now;
+    std::string title = options_.scene.filename().string() + " \xE2\x80\x94 ";
+    if (errors_ > 0) {
+      title += std::to_string(errors_) + (errors_ == 1 ? " error" : " errors");
+      title += scene_.program() ? ", showing last good" : ", nothing to show yet";
+    } else {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.1f ms", frame_ms_);
+      title += buf;
+    }
+    if (clock_.paused()) title += " (paused)";
+    glfwSetWindowTitle(window_, title.c_str());
+  }
+
+  void screenshot() {
+    const Program* program = scene_.program();
+    if (!program) {
+      std::cerr << "raymarching: error: no picture to take: the scene has not compiled yet\n";
+      return;
+    }
+    const int scale = std::max(1, options_.shot_scale);
+    const glm::ivec2 size = glm::ivec2(glm::vec2(inputs_.resolution)) * scale;
+    if (std::max(size.x, size.y) > renderer_.max_tile() && scene_.source().kind != ShaderKind::Shadertoy) {
+      std::cerr << "raymarching: error: --shot-scale " << scale << " exceeds " << renderer_.max_tile()
+                << " pixels, which only mainImage shaders can render in tiles\n";
+      return;
+    }
+    FrameInputs in = inputs_;
+    in.resolution = glm::vec3(size, 1.0f);
+    in.mouse *= static_cast<float>(scale);
+    in.cursor *= static_cast<float>(scale);
+    Image image = renderer_.render_image(*program, in, channels_, size);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const std::string name = options_.scene.stem().string() + "-" + timestamp_now() + "." + options_.shot_format;
+    std::string error;
+    auto written = write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, in), Overwrite::Never, &error);
+    if (written) std::cout << "screenshot: " << written->string() << std::endl;
+    else std::cerr << "raymarching: error: screenshot: " << error << '\n';
+  }
+
+  void toggle_fullscreen() {
+    if (glfwGetWindowMonitor(window_)) {
+      glfwSetWindowMonitor(window_, nullptr, windowed_[0], windowed_[1], windowed_[2], windowed_[3], 0);
+      return;
+    }
+    GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+    if (!monitor) return;
+    glfwGetWindowPos(window_, &windowed_[0], &windowed_[1]);
+    glfwGetWindowSize(window_, &windowed_[2], &windowed_[3]);
+    const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+    glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+  }
+
+  const WindowOptions& options_;
+  GLFWwindow* window_;
+  Scene scene_;
+  std::unique_ptr<Watcher> watcher_;
+  Renderer renderer_;
+  Channels channels_;
+  MouseState mouse_;
+  ShaderClock clock_;
+  FrameInputs inputs_;
+  int errors_ = 0;
+  int presented_generation_ = -1;
+  bool shot_requested_ = false;
+  bool quit_ = false;
+  double frame_ms_ = 16.7;
+  std::chrono::steady_clock::time_point title_updated_{};
+  int windowed_[4] = {0, 0, 800, 450};
+};
+
+void WindowApp::on_key(int key, int action, int) {
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  const bool press = action == GLFW_PRESS;
+  switch (key) {
+    case GLFW_KEY_F12: if (press) shot_requested_ = true; break;
+    case GLFW_KEY_SPACE: if (press) clock_.set_paused(!clock_.paused()); update_title(true); break;
+    case GLFW_KEY_R: if (press) clock_.restart(); break;
+    case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); break;
+    case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); break;
+    case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;
+    case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: if (press) quit_ = true; break;
+    case GLFW_KEY_F1: if (press) std::cout << window_keys_help() << std::flush; break;
+    default: break;
+  }
+}
+
+WindowApp* app_of(GLFWwindow* window) { return static_cast<WindowApp*>(glfwGetWindowUserPointer(window)); }
+
+}  // namespace
+
+int run_window(const WindowOptions& options) {
+  glfwSetErrorCallback([](int, const char* message) { std::cerr << "raymarching: glfw: " << message << '\n'; });
+  if (!glfwInit()) {
+    std::cerr << "raymarching: error: cannot open a window (no display?); `raymarching render` needs none\n";
+    return kExitUsage;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(options.size.x, options.size.y, options.scene.filename().c_str(), nullptr, nullptr);
+  if (!window) {
+    glfwTerminate();
+    std::cerr << "raymarching: error: cannot create an OpenGL 4.5 core window\n";
+    return kExitUsage;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);  // capped by vsync
+  int status = kExitOk;
+  {
+    WindowApp app(options, window);
+    glfwSetWindowUserPointer(window, &app);
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) { app_of(w)->on_mouse_button(button, action); });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { app_of(w)->on_cursor(); });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) { app_of(w)->on_key(key, action, mods); });
+    status = app.run();
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return status;
+}
+
+}  // namespace rm

@@ -1,0 +1,34 @@
+// The window front end: shows a scene in a GLFW window, reloads it when its
+// files change, maps the mouse and keys onto the shader's inputs, and takes
+// screenshots.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "core/source.h"
+#include "core/watch.h"
+
+namespace rm {
+
+struct WindowOptions {
+  std::filesystem::path scene;
+  SourceOptions source;
+  glm::ivec2 size{800, 450};          // in screen coordinates
+  std::filesystem::path shot_dir = ".";
+  std::string shot_format = "png";    // png | exr
+  int shot_scale = 1;
+  std::array<std::filesystem::path, 4> channels;
+  WatchBackend watch = WatchBackend::Auto;
+  bool verbose = false;               // log reloads and presented frames to stderr
+};
+
+// Runs until the window closes; returns the process exit status.
+int run_window(const WindowOptions& options);
+
+// The list of keys, as F1 and --help print it.
+const char* window_keys_help();
+
+}  // namespace rm
