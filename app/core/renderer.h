@@ -1,6 +1,7 @@
 // Renderer: draws one frame of a program with given inputs, on screen or into
 // an offscreen float target, and reads pictures back.
 #pragma once
+#include <algorithm>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -47,6 +48,7 @@ class Renderer {
   // callers check supports_tiles() first.
   Image render_image(const Program& program, FrameInputs inputs, const Channels& channels, glm::ivec2 size) const;
   int max_tile() const { return max_tile_; }
+  void limit_tile(int pixels) { max_tile_ = std::max(1, std::min(max_tile_, pixels)); }  // tests tiling
 
  private:
   gl::VertexArray vao_;

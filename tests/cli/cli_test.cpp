@@ -1,0 +1,98 @@
+// The program as a user runs it: exit status 0/1/2 and one clear line on
+// stderr that names the problem and the path.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+class Cli : public ::testing::Test {
+ protected:
+  static test::Outcome run(const std::string& args) { return test::run_binary(args); }
+  std::string good() {
+    write_file(dir_ / "good.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+    return (dir_ / "good.frag").string();
+  }
+  static int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+  TempDir dir_;
+};
+
+TEST_F(Cli, HelpAndVersionExitZero) {
+  EXPECT_EQ(run("--help").status, 0);
+  EXPECT_EQ(run("--version").status, 0);
+  EXPECT_EQ(run("render --help").status, 0);
+}
+
+TEST_F(Cli, CheckOfAGoodShaderIsSilent) {
+  test::Outcome r = run("check " + good());
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Cli, SyntaxErrorIsExitOneWithFileLineColumn) {
+  write_file(dir_ / "bad.frag", "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0) +;\n}\n");
+  test::Outcome r = run("check " + (dir_ / "bad.frag").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind((dir_ / "bad.frag").string() + ":2:", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(": error: "), std::string::npos);
+}
+
+TEST_F(Cli, DefinesAndIncludeDirsWorkAsInACompiler) {
+  write_file(dir_ / "d.frag", "#include \"extra.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(LEVEL + EXTRA); }\n");
+  write_file(dir_ / "inc/extra.glsl", "const float EXTRA = 1.0;\n");
+  const std::string scene = (dir_ / "d.frag").string(), inc = (dir_ / "inc").string();
+  EXPECT_EQ(run("check " + scene + " -I " + inc).status, 1);                 // LEVEL undefined
+  EXPECT_EQ(run("check " + scene + " -I " + inc + " -DLEVEL=2.0").status, 0);
+  EXPECT_EQ(run("check " + scene + " -I" + inc + " -D LEVEL").status, 0);    // NAME alone is 1
+  EXPECT_EQ(run("check " + scene + " -DLEVEL=2.0").status, 1);              // include not found
+}
+
+TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
+  const std::string g = good();
+  const std::string out = (dir_ / "o.png").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render " + (dir_ / "missing.frag").string() + " -o " + out, "no such file"},
+      {"render " + dir_.path().string() + " -o " + out, "is a directory"},
+      {"check " + (dir_ / "missing.frag").string(), "no such file"},
+      {"--no-such-option", "--no-such-option"},
+      {"render " + g + " -o " + out + " --size 0x0", "--size '0x0'"},
+      {"render " + g + " -o " + out + " --size -5x3", "--size '-5x3'"},
+      {"render " + g + " -o " + out + " --size 100000x100000", "--size '100000x100000'"},
+      {"render " + g + " -o " + out + " --size big", "--size 'big'"},
+      {"render " + g + " -o " + out + " --mouse 1,2,3", "--mouse '1,2,3'"},
+      {"render " + g + " -o " + out + " --mouse a,b", "--mouse 'a'"},
+      {"render " + g + " -o " + out + " --time soon", "--time 'soon'"},
+      {"render " + g + " -o " + out + " --time nan", "--time 'nan'"},
+      {"render " + g + " -o " + (dir_ / "o.xyz").string(), "unknown image format"},
+      {"render " + g + " -o " + (dir_ / "nodir/o.png").string(), "does not exist"},
+      {"render " + g + " -o " + (dir_ / "frame.png").string() + " --frames 3", "counter"},
+      {"render " + g + " -o " + out + " --channel0 " + (dir_ / "none.png").string(), "--channel0"},
+      {"render " + g + " -o " + out + " -D 9bad=1", "-D '9bad=1'"},
+      {"render " + g, "--output"},
+  };
+  for (const auto& [args, expected] : cases) {
+    test::Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("raymarching: error: ", 0), 0u) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST_F(Cli, ShaderErrorDoesNotTouchAnExistingOutput) {
+  write_file(dir_ / "bad.frag", "void mainImage(out vec4 c, in vec2 f) { c = nope; }\n");
+  write_file(dir_ / "keep.png", "previous picture");
+  test::Outcome r = run("render " + (dir_ / "bad.frag").string() + " -o " + (dir_ / "keep.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(test::read_file(dir_ / "keep.png"), "previous picture");
+}
+
+}  // namespace
+}  // namespace rm

@@ -1,0 +1,210 @@
+// Headless rendering through EGL: inputs reach the shader exactly, every kind
+// of shader renders, failures keep the last good program, tiles match.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/capture.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+#include "headless/egl_context.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+using test::run_binary;
+
+std::vector<float> read_pixels(const std::filesystem::path& path, int* width = nullptr) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  if (width) *width = in->spec().width;
+  std::vector<float> px(static_cast<size_t>(in->spec().image_pixels()) * 4);
+  in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, px.data());
+  return px;
+}
+
+class Gpu : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    std::string error;
+    context_ = EglContext::create(&error).release();
+    ASSERT_NE(context_, nullptr) << error;
+  }
+  static void TearDownTestSuite() { delete context_; }
+
+  Image render(Scene& scene, glm::ivec2 size, FrameInputs in = {}) {
+    in.resolution = glm::vec3(size, 1.0f);
+    return renderer_.render_image(*scene.program(), in, channels_, size);
+  }
+
+  static EglContext* context_;
+  Renderer renderer_;
+  Channels channels_;
+  TempDir dir_;
+};
+EglContext* Gpu::context_ = nullptr;
+
+TEST_F(Gpu, InputsReachTheShaderExactly) {
+  write_file(dir_ / "inputs.frag", R"(
+void mainImage(out vec4 c, in vec2 f) {
+  int x = int(f.x);
+  if (x == 0) c = vec4(iResolution, 0.0);
+  else if (x == 1) c = vec4(iTime, iTimeDelta, iFrameRate, float(iFrame));
+  else if (x == 2) c = iMouse;
+  else if (x == 3) c = iDate;
+  else if (x == 4) c = vec4(iChannelResolution[0], iSampleRate);
+  else c = texture(iChannel1, vec2(0.5));
+}
+)");
+  const auto out = dir_ / "inputs.exr";
+  test::Outcome r = run_binary("render " + (dir_ / "inputs.frag").string() + " -o " + out.string() +
+              " --size 6x2 --time 1.5 --frame 7 --mouse 10,20,-3,-4 --date 2024-02-29T13:14:15.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto px = read_pixels(out);
+  ASSERT_EQ(px.size(), 6u * 2 * 4);
+  auto pixel = [&](int x) { return glm::vec4(px[x * 4], px[x * 4 + 1], px[x * 4 + 2], px[x * 4 + 3]); };
+  EXPECT_EQ(pixel(0), glm::vec4(6, 2, 1, 0));
+  EXPECT_EQ(pixel(1), glm::vec4(1.5f, 1.0f / 60.0f, 60.0f, 7.0f));
+  EXPECT_EQ(pixel(2), glm::vec4(10, 20, -3, -4));
+  EXPECT_EQ(pixel(3), glm::vec4(2024, 1, 29, 13 * 3600 + 14 * 60 + 15.5f));
+  EXPECT_EQ(pixel(4), glm::vec4(0, 0, 0, 44100));  // unset channel: resolution 0
+  EXPECT_EQ(pixel(5), glm::vec4(0, 0, 0, 0));      // unset channel: transparent black
+}
+
+TEST_F(Gpu, ChannelImageIsSampledRightSideUpWithItsResolution) {
+  Image img{2, 2, {1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 1}};  // top row red, bottom row blue
+  std::string error;
+  ASSERT_TRUE(write_image(dir_ / "tex.png", img, {}, Overwrite::Replace, &error)) << error;
+  write_file(dir_ / "ch.frag", R"(
+void mainImage(out vec4 c, in vec2 f) {
+  c = f.x < 1.0 ? vec4(iChannelResolution[0], 1.0)
+                : texelFetch(iChannel0, ivec2(0, f.y < 1.0 ? 0 : 1), 0);
+}
+)");
+  test::Outcome r = run_binary("render " + (dir_ / "ch.frag").string() + " -o " + (dir_ / "ch.exr").string() + " --size 2x2 --channel0 " +
+              (dir_ / "tex.png").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto px = read_pixels(dir_ / "ch.exr");
+  EXPECT_EQ(glm::vec3(px[0], px[1], px[2]), glm::vec3(2, 2, 1));
+  EXPECT_EQ(glm::vec3(px[4], px[5], px[6]), glm::vec3(1, 0, 0));     // file row 0 (top): texel row 1
+  EXPECT_EQ(glm::vec3(px[12], px[13], px[14]), glm::vec3(0, 0, 1));  // file row 1 (bottom): texel row 0
+}
+
+TEST_F(Gpu, AllThreeKindsOfShaderRender) {
+  write_file(dir_ / "toy.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.5, f.x / iResolution.x, 1.0); }\n");
+  write_file(dir_ / "full.frag",
+             "#version 330 core\nuniform vec3 iResolution;\nout vec4 o;\n"
+             "void main() { o = vec4(0.25, 0.5, gl_FragCoord.x / iResolution.x, 1.0); }\n");
+  write_file(dir_ / "legacy.frag",
+             "#ifdef GL_ES\nprecision mediump float;\n#endif\nuniform vec2 u_resolution;\nuniform float u_time;\n"
+             "uniform sampler2D u_tex0;\n"
+             "void main() { gl_FragColor = vec4(0.25, 0.5, gl_FragCoord.x / u_resolution.x, 1.0)"
+             " + 0.0 * texture2D(u_tex0, vec2(u_time)); }\n");
+  write_file(dir_ / "es.frag",
+             "#version 300 es\nprecision highp float;\nuniform vec3 iResolution;\nout vec4 o;\n"
+             "void main() { o = vec4(0.25, 0.5, gl_FragCoord.x / iResolution.x, 1.0); }\n");
+  for (const char* name : {"toy.frag", "full.frag", "legacy.frag", "es.frag"}) {
+    Scene scene(dir_ / name, {});
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << name << "\n" << join(scene.diagnostics());
+    Image img = render(scene, {4, 2});
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[0], 0.25f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[1], 0.5f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(3, 1)[2], 3.5f / 4.0f) << name;
+  }
+}
+
+TEST_F(Gpu, BrokenReloadKeepsTheLastGoodProgram) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 1.0, 0.0, 1.0); }\n");
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  write_file(path, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0, 0.0, 0.0, 1.0) +;\n}\n");
+  EXPECT_EQ(scene.reload(), ReloadStatus::Failed);
+  ASSERT_FALSE(scene.diagnostics().empty());
+  EXPECT_EQ(scene.diagnostics()[0].line, 2);
+  EXPECT_EQ(render(scene, {2, 2}).pixel(0, 0)[1], 1.0f);  // still green
+  EXPECT_EQ(scene.generation(), 1);
+  write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 0.0, 1.0, 1.0); }\n");
+  EXPECT_EQ(scene.reload(), ReloadStatus::Swapped);
+  EXPECT_TRUE(scene.diagnostics().empty());
+  EXPECT_EQ(render(scene, {2, 2}).pixel(0, 0)[2], 1.0f);
+}
+
+TEST_F(Gpu, FailureOnlyTheDriverFindsKeepsTheLastGoodProgram) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, "#version 450 core\nout vec4 o;\nvoid main() { o = vec4(0.0, 1.0, 0.0, 1.0); }\n");
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  // glslang checks one stage without linking; only the driver's link sees
+  // that f() is declared but never defined.
+  write_file(path, "#version 450 core\nout vec4 o;\nfloat f(float x);\nvoid main() { o = vec4(f(1.0)); }\n");
+  ASSERT_EQ(scene.reload(), ReloadStatus::Failed);
+  ASSERT_EQ(count_errors(scene.diagnostics()), 1) << join(scene.diagnostics());
+  EXPECT_EQ(scene.diagnostics()[0].path, path.string());
+  EXPECT_NE(scene.diagnostics()[0].message.find("f"), std::string::npos);
+  EXPECT_EQ(render(scene, {2, 2}).pixel(0, 0)[1], 1.0f);
+}
+
+TEST_F(Gpu, UnchangedSourceIsNotRecompiled) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  EXPECT_EQ(scene.reload(), ReloadStatus::Unchanged);
+  EXPECT_EQ(scene.generation(), 1);
+}
+
+TEST_F(Gpu, TiledRenderEqualsOnePass) {
+  write_file(dir_ / "t.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, fract(f.x * 0.37 + f.y * 0.11), 1.0); }\n");
+  Scene scene(dir_ / "t.frag", {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  Image whole = render(scene, {37, 23});
+  renderer_.limit_tile(8);
+  Image tiled = render(scene, {37, 23});
+  EXPECT_EQ(whole.rgba, tiled.rgba);
+}
+
+TEST_F(Gpu, ErrorInsideAnIncludeIsReportedAtItsFileAndLine) {
+  write_file(dir_ / "scene.frag", "#include \"lib/util.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(util()); }\n");
+  write_file(dir_ / "lib/util.glsl", "// util\nfloat util() {\n  return 1.0 +;\n}\n");
+  test::Outcome r = run_binary("render " + (dir_ / "scene.frag").string() + " -o " + (dir_ / "x.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind((dir_ / "lib/util.glsl").string() + ":3:", 0), 0u) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.png"));
+}
+
+TEST_F(Gpu, SequenceAdvancesTimeAndFrame) {
+  write_file(dir_ / "s.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTime, float(iFrame), 0.0, 1.0); }\n");
+  test::Outcome r = run_binary("render " + (dir_ / "s.frag").string() + " -o " + (dir_ / "f_%02d.exr").string() +
+              " --size 2x2 --time 1 --frames 3 --fps 4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (int i = 0; i < 3; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "f_%02d.exr", i);
+    const auto px = read_pixels(dir_ / name);
+    ASSERT_EQ(px.size(), 16u) << name;
+    EXPECT_FLOAT_EQ(px[0], 1.0f + i * 0.25f);
+    EXPECT_FLOAT_EQ(px[1], 4.0f + i);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "f_03.exr"));
+}
+
+TEST_F(Gpu, PngIsEightBitTopRowFirst) {
+  write_file(dir_ / "p.frag", "void mainImage(out vec4 c, in vec2 f) { c = f.y > 1.0 ? vec4(1.0, 0.0, 0.0, 1.0) : vec4(2.0, -1.0, 1.0, 1.0); }\n");
+  ASSERT_EQ(run_binary("render " + (dir_ / "p.frag").string() + " -o " + (dir_ / "p.png").string() + " --size 1x2").status, 0);
+  const auto px = read_pixels(dir_ / "p.png");
+  ASSERT_EQ(px.size(), 8u);
+  EXPECT_EQ(glm::vec3(px[0], px[1], px[2]), glm::vec3(1, 0, 0));  // top row: y = 1.5
+  EXPECT_EQ(glm::vec3(px[4], px[5], px[6]), glm::vec3(1, 0, 1));  // clamped
+}
+
+}  // namespace
+}  // namespace rm

@@ -1,0 +1,62 @@
+// Helpers shared by the tests: a temporary directory and file writing.
+#pragma once
+#include <unistd.h>
+
+#include <sys/wait.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace rm::test {
+
+namespace fs = std::filesystem;
+
+// A fresh directory, removed with everything in it at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("rm-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+inline void write_file(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+}
+
+inline std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+struct Outcome {
+  int status;      // exit status, -1 if the process did not exit normally
+  std::string err; // what it wrote to stderr
+};
+
+// Runs the raymarching binary with `args` (shell syntax); stdout is dropped.
+inline Outcome run_binary(const std::string& args) {
+  TempDir dir;
+  const std::string cmd = std::string(RM_BINARY) + " " + args + " 2> '" + (dir / "err.txt").string() + "' >/dev/null";
+  const int raw = std::system(cmd.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_file(dir / "err.txt")};
+}
+
+}  // namespace rm::test

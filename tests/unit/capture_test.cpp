@@ -1,0 +1,117 @@
+// Capture: files are written whole through a rename, never overwritten when
+// asked not to, keep floats in EXR, and carry their metadata.
+#include "core/capture.h"
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "headless/render_command.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+
+Image gradient() {
+  Image img{4, 2, {}};
+  for (int i = 0; i < 8; ++i) img.rgba.insert(img.rgba.end(), {i * 0.5f - 1.0f, 0.25f, 2.0f, 1.0f});
+  return img;
+}
+
+int files_in(const std::filesystem::path& dir) {
+  return static_cast<int>(std::distance(std::filesystem::directory_iterator(dir), {}));
+}
+
+std::vector<float> read_pixels(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  EXPECT_TRUE(in);
+  std::vector<float> px(static_cast<size_t>(in->spec().image_pixels()) * in->spec().nchannels);
+  in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, px.data());
+  return px;
+}
+
+TEST(Capture, NeverOverwriteAddsANumberAndLeavesNoTemporaries) {
+  TempDir dir;
+  std::string error;
+  auto a = write_image(dir / "shot.png", gradient(), {}, Overwrite::Never, &error);
+  auto b = write_image(dir / "shot.png", gradient(), {}, Overwrite::Never, &error);
+  ASSERT_TRUE(a && b) << error;
+  EXPECT_EQ(*a, dir / "shot.png");
+  EXPECT_EQ(*b, dir / "shot-1.png");
+  EXPECT_EQ(files_in(dir.path()), 2);
+}
+
+TEST(Capture, ReplaceOverwrites) {
+  TempDir dir;
+  std::string error;
+  test::write_file(dir / "out.png", "old");
+  ASSERT_TRUE(write_image(dir / "out.png", gradient(), {}, Overwrite::Replace, &error)) << error;
+  EXPECT_NE(test::read_file(dir / "out.png"), "old");
+  EXPECT_EQ(files_in(dir.path()), 1);
+}
+
+TEST(Capture, PngClampsExrKeepsRawFloats) {
+  TempDir dir;
+  std::string error;
+  ASSERT_TRUE(write_image(dir / "a.png", gradient(), {}, Overwrite::Replace, &error)) << error;
+  ASSERT_TRUE(write_image(dir / "a.exr", gradient(), {}, Overwrite::Replace, &error)) << error;
+  auto png = read_pixels(dir / "a.png");
+  auto exr = read_pixels(dir / "a.exr");
+  EXPECT_EQ(png[0], 0.0f);   // -1 clamped
+  EXPECT_EQ(png[2], 1.0f);   // 2 clamped
+  EXPECT_EQ(exr[0], -1.0f);  // kept
+  EXPECT_EQ(exr[2], 2.0f);
+  EXPECT_NEAR(png[1], 0.25f, 0.5f / 255);
+}
+
+TEST(Capture, MetadataRoundTrips) {
+  TempDir dir;
+  std::string error;
+  FrameInputs in;
+  in.resolution = {4, 2, 1};
+  in.time = 1.25f;
+  in.frame = 7;
+  in.mouse = {1, 2, -3, -4};
+  for (const char* name : {"m.png", "m.exr"}) {
+    ASSERT_TRUE(write_image(dir / name, gradient(), frame_metadata("scene.frag", in), Overwrite::Replace, &error));
+    Metadata meta = read_metadata(dir / name);
+    auto get = [&](const std::string& key) {
+      for (auto& [k, v] : meta)
+        if (k == key) return v;
+      return std::string("<missing>");
+    };
+    EXPECT_EQ(get("raymarching:iTime"), "1.25") << name;
+    EXPECT_EQ(get("raymarching:iFrame"), "7") << name;
+    EXPECT_EQ(get("raymarching:iMouse"), "1,2,-3,-4") << name;
+    EXPECT_NE(get("ImageDescription").find("raymarching render scene.frag --size 4x2 --time 1.25 --frame 7"), std::string::npos);
+  }
+}
+
+TEST(Capture, UnknownExtensionAndMissingDirectoryAreRefusedBeforeWriting) {
+  TempDir dir;
+  EXPECT_NE(check_output_path(dir / "x.notanimage").value_or("").find("unknown image format"), std::string::npos);
+  EXPECT_NE(check_output_path(dir / "noext").value_or("").find("no extension"), std::string::npos);
+  EXPECT_NE(check_output_path(dir / "missing/x.png").value_or("").find("does not exist"), std::string::npos);
+  EXPECT_FALSE(check_output_path(dir / "x.png"));
+}
+
+TEST(Capture, FailedWriteLeavesNothingBehind) {
+  std::string error;
+  // /proc refuses new files even for root, after the pre-checks pass.
+  EXPECT_FALSE(write_image("/proc/rm-test-shot.png", gradient(), {}, Overwrite::Replace, &error));
+  EXPECT_NE(error.find("/proc/rm-test-shot.png"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists("/proc/rm-test-shot.png"));
+}
+
+TEST(SequencePath, ExpandsOnePrintfCounter) {
+  EXPECT_EQ(sequence_path("out/frame_%04d.png", 12), std::filesystem::path("out/frame_0012.png"));
+  EXPECT_EQ(sequence_path("f%d.exr", 3), std::filesystem::path("f3.exr"));
+  EXPECT_FALSE(sequence_path("frame.png", 1));
+  EXPECT_FALSE(sequence_path("f%d_%d.png", 1));
+  EXPECT_FALSE(sequence_path("f%s.png", 1));
+}
+
+}  // namespace
+}  // namespace rm

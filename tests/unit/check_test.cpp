@@ -1,0 +1,96 @@
+// Diagnostics: glslang's and the driver's messages land on the user's file,
+// line and column, also inside includes and for host-added lines.
+#include "core/check.h"
+
+#include <gtest/gtest.h>
+
+#include "core/scene.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+TEST(Check, ErrorInAnIncludedFileNamesThatFileAndLine) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "// scene\n#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
+  write_file(dir / "lib.glsl", "// lib line 1\n\nfloat g() {\n  return undefined_name;\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_GE(count_errors(diags), 1);
+  EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() + ":4:10: error: 'undefined_name' : undeclared identifier");
+}
+
+TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\n\n\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(nope);\n}\n");
+  write_file(dir / "lib.glsl", "float a;\nfloat b;\nfloat c2;\nfloat d;\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_GE(count_errors(diags), 1);
+  EXPECT_EQ(diags[0].path, (dir / "scene.frag").string());
+  EXPECT_EQ(diags[0].line, 5);
+  EXPECT_EQ(diags[0].column, 12);
+}
+
+TEST(Check, ValidShaderOfEachKindHasNoErrors) {
+  TempDir dir;
+  write_file(dir / "toy.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, sin(iTime), 1.0); }\n");
+  write_file(dir / "full.frag", "#version 330 core\nuniform float u;\nout vec4 o;\nvoid main() { o = vec4(u); }\n");
+  write_file(dir / "legacy.frag", "uniform float u_time;\nuniform sampler2D u_tex0;\nvarying vec2 v;\n"
+                                  "void main() { gl_FragColor = texture2D(u_tex0, vec2(u_time)); }\n");
+  for (const char* name : {"toy.frag", "full.frag", "legacy.frag"}) {
+    Diagnostics diags;
+    check_scene(dir / name, {}, &diags);
+    EXPECT_EQ(count_errors(diags), 0) << name << "\n" << join(diags);
+  }
+}
+
+TEST(Check, ErrorFromACommandLineDefineNamesTheCommandLine) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(SCALE); }\n");
+  SourceOptions opts;
+  opts.defines = {{"SCALE", "1.0 +"}};
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", opts, &diags);
+  ASSERT_GE(count_errors(diags), 1);
+  EXPECT_EQ(diags[0].path, (dir / "scene.frag").string());  // where the macro is used
+}
+
+TEST(Check, WrongMainImageSignatureIsAttributedToTheScene) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c) { c = vec4(1.0); }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_GE(count_errors(diags), 1);
+  EXPECT_EQ(diags[0].path, (dir / "scene.frag").string());
+  EXPECT_NE(diags[0].message.find("the host adds"), std::string::npos);
+}
+
+TEST(MapLog, MesaCompileMessagesAreMappedWithColumn) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  write_file(dir / "lib.glsl", "float a;\nfloat b;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok());
+  int b_line = 0;
+  for (size_t i = 1; i <= s.line_map.size(); ++i)
+    if (s.final_line_text(static_cast<int>(i)) == "float b;") b_line = static_cast<int>(i);
+  Diagnostics d = map_log("0:" + std::to_string(b_line) + "(7): error: syntax error, unexpected ';'\n", s, LogFormat::Mesa);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].str(), (dir / "lib.glsl").string() + ":2:7: error: syntax error, unexpected ';'");
+}
+
+TEST(MapLog, LinkErrorWithoutLineNamesTheScene) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  Diagnostics d = map_log("error: unresolved reference to function `f'\n", s, LogFormat::Mesa);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].str(), (dir / "scene.frag").string() + ": error: unresolved reference to function `f'");
+}
+
+}  // namespace
+}  // namespace rm

@@ -1,0 +1,212 @@
+// Preprocessor: includes, include-once, cycles, missing files, BOM, the
+// three shader kinds, and the line map that keeps user line numbers true.
+#include "core/source.h"
+
+#include <gtest/gtest.h>
+
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+// The final line (1-based) whose text contains `needle`, or 0.
+int final_line_of(const Source& s, const std::string& needle) {
+  for (size_t i = 1; i <= s.line_map.size(); ++i)
+    if (s.final_line_text(static_cast<int>(i)).find(needle) != std::string::npos) return static_cast<int>(i);
+  return 0;
+}
+
+std::pair<std::string, int> origin_of(const Source& s, const std::string& needle) {
+  return s.locate(final_line_of(s, needle));
+}
+
+const char* kMain = "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n";
+
+TEST(Source, QuotedIncludeIsRelativeToTheIncludingFileAndNests) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "// scene\n#include \"lib/a.glsl\"\nfloat s_marker;\n" + std::string(kMain));
+  write_file(dir / "lib/a.glsl", "\n\nfloat a_marker;\n#include \"b.glsl\"\n");
+  write_file(dir / "lib/b.glsl", "float b_marker;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(origin_of(s, "a_marker"), std::make_pair((dir / "lib/a.glsl").string(), 3));
+  EXPECT_EQ(origin_of(s, "b_marker"), std::make_pair((dir / "lib/b.glsl").string(), 1));
+  EXPECT_EQ(origin_of(s, "s_marker"), std::make_pair((dir / "scene.frag").string(), 3));
+  EXPECT_LT(final_line_of(s, "a_marker"), final_line_of(s, "b_marker"));
+  EXPECT_LT(final_line_of(s, "b_marker"), final_line_of(s, "s_marker"));
+  EXPECT_EQ(s.files.size(), 3u);
+}
+
+TEST(Source, IncludeDirsAndShaderlibAreSearched) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"util.glsl\"\n#include <rm/lib.glsl>\n" + std::string(kMain));
+  write_file(dir / "inc/util.glsl", "float util_marker;\n");
+  write_file(dir / "shaderlib/rm/lib.glsl", "float lib_marker;\n");
+  SourceOptions opts;
+  opts.include_dirs = {dir / "inc"};
+  opts.shaderlib_dir = dir / "shaderlib";
+  Source s = preprocess(dir / "scene.frag", opts);
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(origin_of(s, "util_marker").first, (dir / "inc/util.glsl").string());
+  EXPECT_EQ(origin_of(s, "lib_marker").first, (dir / "shaderlib/rm/lib.glsl").string());
+}
+
+TEST(Source, AngledIncludeDoesNotSearchTheIncludingDirectory) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include <local.glsl>\n" + std::string(kMain));
+  write_file(dir / "local.glsl", "float x;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_EQ(s.errors[0].str(), (dir / "scene.frag").string() + ":1:10: error: cannot find include 'local.glsl'");
+}
+
+TEST(Source, EachFileIsIncludedOnce) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"a.glsl\"\n#include \"b.glsl\"\n#include \"a.glsl\"\n" + std::string(kMain));
+  write_file(dir / "a.glsl", "float once_marker;\n");
+  write_file(dir / "b.glsl", "#include \"a.glsl\"\nfloat b_marker;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  size_t first = s.text.find("once_marker");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(s.text.find("once_marker", first + 1), std::string::npos);
+}
+
+TEST(Source, CycleIsAnErrorAtTheIncludingLine) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"a.glsl\"\n" + std::string(kMain));
+  write_file(dir / "a.glsl", "// a\n#include \"b.glsl\"\n");
+  write_file(dir / "b.glsl", "\n\n  #include \"a.glsl\"\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_EQ(s.errors[0].str(), (dir / "b.glsl").string() + ":3:12: error: #include cycle: a.glsl -> b.glsl -> a.glsl");
+}
+
+TEST(Source, MissingIncludeNamesTheIncludingFileAndLineAndIsWatched) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "\n#include \"lib/a.glsl\"\n" + std::string(kMain));
+  write_file(dir / "lib/a.glsl", "float a;\n\n#include \"gone.glsl\"\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_EQ(s.errors[0].str(), (dir / "lib/a.glsl").string() + ":3:10: error: cannot find include 'gone.glsl'");
+  // Creating the missing file must reload the scene, so it is watched.
+  EXPECT_NE(std::find(s.watch.begin(), s.watch.end(), dir / "lib/gone.glsl"), s.watch.end());
+}
+
+TEST(Source, IncludingADirectoryIsAnError) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"sub\"\n" + std::string(kMain));
+  std::filesystem::create_directories(dir / "sub");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_EQ(s.errors[0].path, (dir / "scene.frag").string());
+  EXPECT_EQ(s.errors[0].line, 1);
+  EXPECT_NE(s.errors[0].message.find("is a directory"), std::string::npos);
+}
+
+TEST(Source, ByteOrderMarkIsStrippedAndVersionStillFound) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "\xEF\xBB\xBF#version 330 core\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.kind, ShaderKind::Complete);
+  EXPECT_EQ(s.text.find("\xEF\xBB\xBF"), std::string::npos);
+  EXPECT_EQ(s.text.rfind("#version 330 core\n", 0), 0u);
+  EXPECT_EQ(origin_of(s, "out vec4 o;").second, 2);
+}
+
+TEST(Source, ShadertoyWrapperDoesNotShiftUserLines) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "// line 1\n// line 2\nfloat line3_marker;\n" + std::string(kMain));
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s.kind, ShaderKind::Shadertoy);
+  EXPECT_GT(final_line_of(s, "line3_marker"), 3);  // host lines come first...
+  EXPECT_EQ(origin_of(s, "line3_marker").second, 3);  // ...but the map says line 3
+  EXPECT_NE(s.text.find("uniform vec3 iResolution;"), std::string::npos);
+  EXPECT_NE(s.text.find("#define HW_PERFORMANCE 1"), std::string::npos);
+  EXPECT_EQ(s.line_map.size(), static_cast<size_t>(std::count(s.text.begin(), s.text.end(), '\n')));
+}
+
+TEST(Source, DefinesFollowTheVersionLineAndMapToTheCommandLine) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#version 450\nout vec4 o;\nvoid main() { o = vec4(QUALITY); }\n");
+  SourceOptions opts;
+  opts.defines = {{"QUALITY", "2"}, {"FAST", ""}};
+  Source s = preprocess(dir / "scene.frag", opts);
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s.final_line_text(1), "#version 450");
+  EXPECT_EQ(origin_of(s, "#define QUALITY 2"), std::make_pair(std::string("<command-line>"), 1));
+  EXPECT_EQ(origin_of(s, "#define FAST 1"), std::make_pair(std::string("<command-line>"), 2));
+}
+
+TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "#ifdef GL_ES\nprecision mediump float;\n#endif\nuniform vec2 u_resolution;\n"
+             "void main() { gl_FragColor = texture2D(u_tex0, gl_FragCoord.xy / u_resolution); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s.kind, ShaderKind::Legacy);
+  EXPECT_EQ(s.version_line, "#version 450 core");
+  EXPECT_NE(s.text.find("#define gl_FragColor rm_FragColor"), std::string::npos);
+  EXPECT_EQ(origin_of(s, "void main()").second, 5);
+}
+
+TEST(Source, OldVersionLineIsTreatedAsLegacy) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s.kind, ShaderKind::Legacy);
+  EXPECT_EQ(s.text.find("#version 120"), std::string::npos);
+}
+
+TEST(Source, MainImageInACommentDoesNotMakeAShadertoyShader) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#version 330\n// mainImage(\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n");
+  EXPECT_EQ(preprocess(dir / "scene.frag", {}).kind, ShaderKind::Complete);
+}
+
+TEST(Source, NeitherMainNorMainImageIsAnError) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "float f() { return 1.0; }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_NE(s.errors[0].str().find("neither mainImage"), std::string::npos);
+}
+
+TEST(Source, CrLfLineEndingsKeepLineNumbers) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "// a\r\n// b\r\nfloat crlf_marker;\r\n" + std::string(kMain));
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(origin_of(s, "crlf_marker").second, 3);
+  EXPECT_EQ(s.text.find('\r'), std::string::npos);
+}
+
+TEST(Source, InMemoryFileSystemIsUsedForEveryRead) {
+  FileSystem memory;
+  memory.read = [](const fs::path& p, std::string* error) -> std::optional<std::string> {
+    if (p == "/mem/scene.frag") return std::string("#include \"x.glsl\"\n") + kMain;
+    if (p == "/mem/x.glsl") return std::string("float mem_marker;\n");
+    *error = "no such file";
+    return std::nullopt;
+  };
+  memory.exists = [](const fs::path& p) { return p == "/mem/scene.frag" || p == "/mem/x.glsl"; };
+  Source s = preprocess("/mem/scene.frag", {}, memory);
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(origin_of(s, "mem_marker"), std::make_pair(std::string("/mem/x.glsl"), 1));
+}
+
+TEST(Source, UnreadableSceneIsOneError) {
+  Source s = preprocess("/nonexistent/scene.frag", {});
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_EQ(s.errors[0].str(), "/nonexistent/scene.frag: error: cannot read scene: no such file");
+}
+
+}  // namespace
+}  // namespace rm

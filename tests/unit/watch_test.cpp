@@ -1,0 +1,140 @@
+// Watcher: each way editors save a file gives exactly one change, for both
+// backends; includes are watched; a half-written file is not reported.
+#include "core/watch.h"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <thread>
+
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using namespace std::chrono_literals;
+using test::TempDir;
+using test::write_file;
+
+// Counts settled changes reported during `window`.
+int changes_during(Watcher& w, std::chrono::milliseconds window) {
+  int n = 0;
+  const auto end = WatchClock::now() + window;
+  while (WatchClock::now() < end) {
+    if (w.changed()) ++n;
+    std::this_thread::sleep_for(2ms);
+  }
+  return n;
+}
+
+// Long enough for the quiet period and the grace for deleted files.
+constexpr auto kSettle = 600ms;
+
+class WatchTest : public ::testing::TestWithParam<WatchBackend> {
+ protected:
+  void SetUp() override {
+    scene_ = dir_ / "scene.frag";
+    include_ = dir_ / "lib" / "inc.glsl";
+    write_file(scene_, "v1\n");
+    write_file(include_, "i1\n");
+    write_file(dir_ / "other.txt", "x\n");
+    watcher_ = make_watcher(GetParam());
+    ASSERT_TRUE(watcher_);
+    watcher_->watch({scene_, include_});
+    ASSERT_EQ(changes_during(*watcher_, 50ms), 0);
+  }
+
+  TempDir dir_;
+  std::filesystem::path scene_, include_;
+  std::unique_ptr<Watcher> watcher_;
+};
+
+TEST_P(WatchTest, InPlaceWrite) {
+  write_file(scene_, "v2 longer\n");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, WriteTemporaryThenRename) {
+  write_file(dir_ / ".scene.frag.swp", "v2\n");
+  std::filesystem::rename(dir_ / ".scene.frag.swp", scene_);
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, VimStyleBackupRenameThenWrite) {
+  write_file(dir_ / "4913", "");
+  std::filesystem::remove(dir_ / "4913");
+  std::filesystem::rename(scene_, dir_ / "scene.frag~");
+  write_file(scene_, "v2 from vim\n");
+  std::filesystem::remove(dir_ / "scene.frag~");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, DeleteThenRecreate) {
+  std::filesystem::remove(scene_);
+  std::this_thread::sleep_for(40ms);
+  write_file(scene_, "v2 recreated\n");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, SedInPlace) {
+  ASSERT_EQ(std::system(("sed -i s/v1/v2/ '" + scene_.string() + "'").c_str()), 0);
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, GitCheckout) {
+  const std::string git = "git -C '" + dir_.path().string() + "' -c user.name=t -c user.email=t@t ";
+  ASSERT_EQ(std::system((git + "init -q && " + git + "add -A && " + git + "commit -qm one").c_str()), 0);
+  write_file(scene_, "v2 committed\n");
+  ASSERT_EQ(std::system((git + "commit -qam two").c_str()), 0);
+  changes_during(*watcher_, kSettle);  // the edit above
+  ASSERT_EQ(std::system((git + "checkout -q HEAD~1 -- scene.frag").c_str()), 0);
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+  EXPECT_EQ(test::read_file(scene_), "v1\n");
+}
+
+TEST_P(WatchTest, BurstOfWritesIsOneChange) {
+  for (int i = 0; i < 20; ++i) {
+    write_file(scene_, "burst " + std::to_string(i) + "\n");
+    std::this_thread::sleep_for(2ms);
+  }
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, IncludeChangeIsAChange) {
+  write_file(include_, "i2\n");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1);
+}
+
+TEST_P(WatchTest, OtherFilesInTheDirectoryAreIgnored) {
+  write_file(dir_ / "other.txt", "y\n");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 0);
+}
+
+TEST_P(WatchTest, NewWatchListIsHonoured) {
+  watcher_->watch({scene_});
+  write_file(include_, "i2\n");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, WatchTest, ::testing::Values(WatchBackend::Inotify, WatchBackend::Poll),
+                         [](const auto& info) { return info.param == WatchBackend::Inotify ? "inotify" : "poll"; });
+
+TEST(InotifyWatch, HalfWrittenFileIsNotReportedUntilClosed) {
+  TempDir dir;
+  const auto scene = dir / "scene.frag";
+  write_file(scene, "v1\n");
+  auto w = make_watcher(WatchBackend::Inotify);
+  w->watch({scene});
+  int fd = open(scene.c_str(), O_WRONLY | O_TRUNC);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(write(fd, "void mainImage(", 15), 15);
+  EXPECT_EQ(changes_during(*w, 300ms), 0);  // still open for writing
+  ASSERT_EQ(write(fd, "...)\n", 5), 5);
+  close(fd);
+  EXPECT_EQ(changes_during(*w, kSettle), 1);
+}
+
+}  // namespace
+}  // namespace rm
