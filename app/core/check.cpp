@@ -16,12 +16,30 @@ void ensure_glslang_initialized() {
   std::call_once(once, [] { glslang::InitializeProcess(); });
 }
 
-// glslang names no column; where it quotes a token, find that token on the line.
-int column_of_quoted_token(const std::string& message, const std::string& line_text) {
+// The spelling of the parser tokens glslang names in "unexpected X".
+const char* token_spelling(const std::string& name) {
+  static const std::pair<const char*, const char*> tokens[] = {
+      {"SEMICOLON", ";"}, {"COMMA", ","},       {"DOT", "."},          {"COLON", ":"},
+      {"EQUAL", "="},     {"PLUS", "+"},        {"DASH", "-"},         {"STAR", "*"},
+      {"SLASH", "/"},     {"LEFT_PAREN", "("},  {"RIGHT_PAREN", ")"},  {"LEFT_BRACE", "{"},
+      {"RIGHT_BRACE", "}"}, {"LEFT_BRACKET", "["}, {"RIGHT_BRACKET", "]"}, {"QUESTION", "?"},
+  };
+  for (const auto& [token, spelling] : tokens)
+    if (name == token) return spelling;
+  return nullptr;
+}
+
+// glslang names no column. Where its message quotes a token, or names the
+// unexpected one, find that token on the line.
+int column_in_line(const std::string& message, const std::string& line_text) {
   static const std::regex quoted(R"('([^']+)')");
+  static const std::regex unexpected(R"(unexpected ([A-Z_]+))");
   std::smatch m;
-  if (!std::regex_search(message, m, quoted)) return 0;
-  size_t at = line_text.find(m[1].str());
+  std::string needle;
+  if (std::regex_search(message, m, unexpected) && token_spelling(m[1].str())) needle = token_spelling(m[1].str());
+  else if (std::regex_search(message, m, quoted)) needle = m[1].str();
+  if (needle.empty()) return 0;
+  size_t at = line_text.find(needle);
   return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
 }
 
@@ -78,7 +96,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
         int final_line = std::stoi(m[2].str());
         std::string message = m[3].str();
         Severity sev = m[1] == "ERROR" ? Severity::Error : Severity::Warning;
-        int col = column_of_quoted_token(message, source.final_line_text(final_line));
+        int col = column_in_line(message, source.final_line_text(final_line));
         out.push_back(locate(source, sev, final_line, col, std::move(message)));
         continue;
       }

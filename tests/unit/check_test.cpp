@@ -94,3 +94,18 @@ TEST(MapLog, LinkErrorWithoutLineNamesTheScene) {
 
 }  // namespace
 }  // namespace rm
+
+namespace rm {
+namespace {
+
+TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
+  test::TempDir dir;
+  test::write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0) +;\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_GE(count_errors(diags), 1);
+  EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: '' :  syntax error, unexpected SEMICOLON");
+}
+
+}  // namespace
+}  // namespace rm

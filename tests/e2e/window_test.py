@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+"""Window end to end, as a person uses it: a real GLFW window under Xvfb,
+driven by xdotool. Run as: xvfb-run -a python3 window_test.py RAYMARCHING
+
+Checks: the window opens; a mouse drag changes iMouse; F12 writes a PNG whose
+pixels match `render` of the same scene, time and mouse; an edit saved by
+rename shows up; a broken edit keeps the last good frame and reports
+file:line; the fix reloads; Q quits with status 0.
+"""
+import os
+import re
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+
+BINARY = os.path.abspath(sys.argv[1])
+SIZE = (320, 180)
+
+SCENE_V1 = """// version 1
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  c = vec4(uv, fract(iTime * 0.1), 1.0);
+  if (iMouse.z != 0.0) c.rg = iMouse.xy / iResolution.xy;
+}
+"""
+SCENE_V2 = SCENE_V1.replace("// version 1", "// version 2").replace("vec4(uv,", "vec4(1.0 - uv,")
+SCENE_BROKEN = "// broken\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0) +;\n}\n"
+
+passed, failed = 0, 0
+
+
+def check(name, ok, detail=""):
+    global passed, failed
+    if ok:
+        passed += 1
+        print(f"ok   {name}")
+    else:
+        failed += 1
+        print(f"FAIL {name} {detail}")
+
+
+def wait_for(predicate, timeout=20.0, step=0.05):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(step)
+    return None
+
+
+def xdotool(*args):
+    return subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True).stdout.strip()
+
+
+def save_by_rename(path, text):
+    tmp = path + ".tmp~"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.rename(tmp, path)
+
+
+def metadata(image):
+    out = subprocess.run(["iinfo", "-v", image], capture_output=True, text=True).stdout
+    return dict(re.findall(r'^\s+([\w:]+): "(.*)"$', out, re.M))
+
+
+def matches_render(shot, scene_file, workdir):
+    """Renders what the shot's metadata says, headless, and compares pixels."""
+    command = shlex.split(metadata(shot)["ImageDescription"])
+    assert command[:2] == ["raymarching", "render"], command
+    reference = os.path.join(workdir, "reference.png")
+    args = [BINARY, "render", scene_file] + command[3:] + ["-o", reference]
+    subprocess.run(args, check=True)
+    # One 8-bit step of tolerance: the window's framebuffer and the float
+    # target may round differently.
+    diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
+                          capture_output=True, text=True)
+    return diff.returncode == 0, diff.stdout
+
+
+def main():
+    work = tempfile.mkdtemp(prefix="rm-e2e-")
+    scene = os.path.join(work, "scene.frag")
+    with open(scene, "w") as f:
+        f.write(SCENE_V1)
+    shots = os.path.join(work, "shots")
+    os.mkdir(shots)
+    err_path = os.path.join(work, "stderr.txt")
+    out_path = os.path.join(work, "stdout.txt")
+    proc = subprocess.Popen([BINARY, scene, "--size", f"{SIZE[0]}x{SIZE[1]}", "--shot-dir", shots, "-v"],
+                            stdout=open(out_path, "w"), stderr=open(err_path, "w"), cwd=work)
+
+    def stderr():
+        return open(err_path).read()
+
+    shot_count = [0]
+
+    def take_shot():
+        xdotool("key", "--window", window, "F12")
+        shot_count[0] += 1
+        lines = wait_for(lambda: [l for l in open(out_path).read().splitlines() if l.startswith("screenshot: ")]
+                         if len(re.findall("screenshot: ", open(out_path).read())) >= shot_count[0] else None)
+        return lines[-1][len("screenshot: "):] if lines else None
+
+    window = wait_for(lambda: xdotool("search", "--name", "scene.frag"))
+    check("window opens", bool(window), stderr())
+    if not window:
+        proc.kill()
+        return
+    window = window.splitlines()[0]
+    check("first program presented", wait_for(lambda: "presented generation 1" in stderr()), stderr())
+
+    # Drag from (100, 50) to (200, 120) in window coordinates (y down).
+    xdotool("mousemove", "--window", window, 100, 50)
+    xdotool("mousedown", 1)
+    xdotool("mousemove", "--window", window, 200, 120)
+    time.sleep(0.2)
+    xdotool("mouseup", 1)
+    time.sleep(0.2)
+    shot = take_shot()
+    check("F12 writes a screenshot", shot and os.path.exists(shot), str(shot))
+    if not shot:
+        proc.kill()
+        return
+    check("screenshot name is scene-YYYYmmdd-HHMMSS-mmm.png",
+          re.fullmatch(r"scene-\d{8}-\d{6}-\d{3}\.png", os.path.basename(shot)), shot)
+    mouse = [float(v) for v in metadata(shot).get("raymarching:iMouse", "0,0,0,0").split(",")]
+    check("drag sets iMouse (xy at release, z < 0 after release, press at zw)",
+          mouse == [200.0, SIZE[1] - 120.0, -100.0, -(SIZE[1] - 50.0)], mouse)
+    ok, detail = matches_render(shot, scene, work)
+    check("F12 pixels match `render` of the same scene, time and mouse", ok, detail)
+
+    save_by_rename(scene, SCENE_V2)
+    check("edit saved by rename reloads", wait_for(lambda: "presented generation 2" in stderr()), stderr())
+    shot = take_shot()
+    good_copy = os.path.join(work, "good.frag")
+    with open(good_copy, "w") as f:
+        f.write(SCENE_V2)
+    ok, detail = matches_render(shot, good_copy, work)
+    check("the new picture is on screen", ok, detail)
+
+    save_by_rename(scene, SCENE_BROKEN)
+    check("broken edit reports file:line:col",
+          wait_for(lambda: re.search(re.escape(scene) + r":3:\d+: error: ", stderr())), stderr())
+    check("title says the picture is stale", wait_for(lambda: "showing last good" in xdotool("getwindowname", window)),
+          xdotool("getwindowname", window))
+    shot = take_shot()
+    ok, detail = matches_render(shot, good_copy, work)
+    check("broken edit keeps the last good frame", ok, detail)
+    before = os.listdir(shots)
+
+    save_by_rename(scene, SCENE_V1)
+    check("the fix reloads", wait_for(lambda: "presented generation 3" in stderr()), stderr())
+    check("title clears the error", wait_for(lambda: "error" not in xdotool("getwindowname", window)),
+          xdotool("getwindowname", window))
+    shot = take_shot()
+    check("no screenshot is overwritten", set(before) < set(os.listdir(shots)), os.listdir(shots))
+
+    xdotool("key", "--window", window, "q")
+    try:
+        status = proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    check("Q quits with status 0", status == 0, status)
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    finally:
+        print(f"{passed} passed, {failed} failed")
+    sys.exit(1 if failed or not passed else 0)
