@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages raymarching needs, only if some are missing.
+#   scripts/deps.sh build   what building and running needs
+#   scripts/deps.sh test    that, plus what the tests need (Xvfb, xdotool, ...)
+set -euo pipefail
+
+build_packages=(
+  cmake ninja-build g++ pkg-config
+  libglfw3-dev libglm-dev glslang-dev glslang-tools libopenimageio-dev libegl-dev libepoxy-dev
+  libcli11-dev libgtest-dev libgmock-dev
+  libegl-mesa0 libgl1-mesa-dri  # Mesa: EGL and llvmpipe, for machines without a GPU
+)
+test_packages=(xvfb xauth xdotool openimageio-tools python3 git)
+
+wanted=("${build_packages[@]}")
+if [[ "${1:-build}" == test ]]; then wanted+=("${test_packages[@]}"); fi
+
+missing=()
+for p in "${wanted[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "installing: ${missing[*]}" >&2
+sudo=()
+[[ $(id -u) -ne 0 ]] && sudo=(sudo)
+"${sudo[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
