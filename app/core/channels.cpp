@@ -4,7 +4,7 @@
 
 namespace rm {
 
-std::optional<ChannelImage> load_channel_image(const std::filesystem::path& path, std::string* error) {
+std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string why = OIIO::geterror();
@@ -12,7 +12,7 @@ std::optional<ChannelImage> load_channel_image(const std::filesystem::path& path
     return std::nullopt;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  ChannelImage image;
+  Image image;
   image.width = spec.width;
   image.height = spec.height;
   const int channels = spec.nchannels;
@@ -21,20 +21,18 @@ std::optional<ChannelImage> load_channel_image(const std::filesystem::path& path
     *error = in->geterror();
     return std::nullopt;
   }
-  // Expand to RGBA and flip so that row 0 is the bottom, as Shadertoy samples it.
+  // Expand grey, grey+alpha and RGB to RGBA.
   image.rgba.assign(static_cast<size_t>(image.width) * image.height * 4, 1.0f);
-  for (int y = 0; y < image.height; ++y) {
-    const float* src = &pixels[static_cast<size_t>(image.height - 1 - y) * image.width * channels];
-    float* dst = &image.rgba[static_cast<size_t>(y) * image.width * 4];
-    for (int x = 0; x < image.width; ++x, src += channels, dst += 4) {
-      if (channels == 1) {
-        dst[0] = dst[1] = dst[2] = src[0];
-      } else if (channels == 2) {  // grey + alpha
-        dst[0] = dst[1] = dst[2] = src[0];
-        dst[3] = src[1];
-      } else {
-        for (int c = 0; c < std::min(channels, 4); ++c) dst[c] = src[c];
-      }
+  const float* src = pixels.data();
+  float* dst = image.rgba.data();
+  for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i, src += channels, dst += 4) {
+    if (channels == 1) {
+      dst[0] = dst[1] = dst[2] = src[0];
+    } else if (channels == 2) {  // grey + alpha
+      dst[0] = dst[1] = dst[2] = src[0];
+      dst[3] = src[1];
+    } else {
+      for (int c = 0; c < std::min(channels, 4); ++c) dst[c] = src[c];
     }
   }
   return image;
@@ -49,7 +47,8 @@ Channels::Channels() {
   }
 }
 
-void Channels::set(int index, const ChannelImage& image) {
+void Channels::set(int index, const Image& file_image) {
+  const Image image = file_image.flipped();  // GL's row 0 is the bottom
   // Shadertoy's defaults: mipmapped, linear filtering, repeat wrap.
   gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
   int levels = 1;

@@ -11,24 +11,19 @@
 #include <glm/glm.hpp>
 
 #include "core/gl.h"
+#include "core/image.h"
 
 namespace rm {
 
-// Pixels decoded from an image file, RGBA float, bottom row first (GL order).
-struct ChannelImage {
-  int width = 0;
-  int height = 0;
-  std::vector<float> rgba;
-};
-
-// Decodes an image file; returns nullopt and sets *error on failure. No GL needed.
-std::optional<ChannelImage> load_channel_image(const std::filesystem::path& path, std::string* error);
+// Decodes an image file into RGBA; returns nullopt and sets *error on
+// failure. No GL needed.
+std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error);
 
 class Channels {
  public:
   static constexpr int kCount = 4;
   Channels();  // needs a current GL context
-  void set(int index, const ChannelImage& image);
+  void set(int index, const Image& image);  // sampled right side up, as on Shadertoy
   GLuint texture(int index) const { return textures_[static_cast<size_t>(index)].get(); }
   glm::vec3 resolution(int index) const { return resolution_[static_cast<size_t>(index)]; }
 

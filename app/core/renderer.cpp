@@ -15,17 +15,12 @@ RenderTarget::RenderTarget(int width, int height) : width_(width), height_(heigh
 void RenderTarget::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get()); }
 
 Image RenderTarget::read() const {
-  Image image{width_, height_, std::vector<float>(static_cast<size_t>(width_) * height_ * 4)};
-  std::vector<float> rows(image.rgba.size());
+  Image gl_rows{width_, height_, std::vector<float>(static_cast<size_t>(width_) * height_ * 4)};
   glNamedFramebufferReadBuffer(fbo_.get(), GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, rows.data());
-  // GL's row 0 is the bottom; files start at the top.
-  const size_t stride = static_cast<size_t>(width_) * 4;
-  for (int y = 0; y < height_; ++y)
-    std::copy_n(&rows[static_cast<size_t>(height_ - 1 - y) * stride], stride, &image.rgba[static_cast<size_t>(y) * stride]);
-  return image;
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, gl_rows.rgba.data());
+  return gl_rows.flipped();
 }
 
 Renderer::Renderer() : vao_(gl::make_vertex_array()) {

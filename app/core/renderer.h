@@ -8,18 +8,11 @@
 
 #include "core/channels.h"
 #include "core/gl.h"
+#include "core/image.h"
 #include "core/inputs.h"
 #include "core/program.h"
 
 namespace rm {
-
-// A picture read back from GL: RGBA float, top row first (as files store it).
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<float> rgba;
-  const float* pixel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
-};
 
 // An offscreen RGBA32F framebuffer, so EXR output keeps unclamped floats.
 class RenderTarget {

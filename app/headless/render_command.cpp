@@ -59,7 +59,7 @@ int render_command(const RenderRequest& req) {
   if (!first_out)
     return fail("'" + req.out.string() + "': --frames needs a counter such as %04d in the output name", kExitUsage);
   if (auto problem = check_output_path(*first_out)) return fail(*problem, kExitUsage);
-  std::array<std::optional<ChannelImage>, Channels::kCount> images;
+  std::array<std::optional<Image>, Channels::kCount> images;
   for (int i = 0; i < Channels::kCount; ++i) {
     const auto& path = req.channels[static_cast<size_t>(i)];
     if (path.empty()) continue;

@@ -1,0 +1,18 @@
+// Image: RGBA float pixels, top row first, as image files store them. GL's
+// row 0 is the bottom; the code that talks to GL flips rows at that border.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace rm {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;
+  const float* pixel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+  // Row order flipped: turns file order into GL order and back.
+  Image flipped() const;
+};
+
+}  // namespace rm
