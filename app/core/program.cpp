@@ -122,7 +122,9 @@ std::optional<Program> Program::build(const Source& source, Diagnostics* diags) 
     std::string key(name, static_cast<size_t>(length));
     if (auto bracket = key.find('['); bracket != std::string::npos) key.resize(bracket);
     info.location = glGetUniformLocation(p.id(), name);
-    if (info.location >= 0) p.uniforms_[key] = info;
+    for (GLint e = 0; e < info.size; ++e)
+      info.elements.push_back(glGetUniformLocation(p.id(), (key + "[" + std::to_string(e) + "]").c_str()));
+    if (info.location >= 0) p.uniforms_[key] = std::move(info);
   }
   return p;
 }
@@ -135,8 +137,8 @@ void Program::set(const std::string& name, const float* values, int components) 
 
 void Program::set_element(const std::string& name, int index, const float* values, int components) const {
   auto it = uniforms_.find(name);
-  if (it == uniforms_.end() || index >= it->second.size) return;
-  GLint location = glGetUniformLocation(id(), (name + "[" + std::to_string(index) + "]").c_str());
+  if (it == uniforms_.end() || index < 0 || index >= it->second.size) return;
+  const GLint location = it->second.elements[static_cast<size_t>(index)];
   if (location >= 0) upload(id(), location, it->second.type, values, components);
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "core/diagnostics.h"
 #include "core/gl.h"
@@ -14,7 +15,8 @@ namespace rm {
 struct UniformInfo {
   GLint location = -1;
   GLenum type = 0;
-  GLint size = 1;  // array length
+  GLint size = 1;                 // array length
+  std::vector<GLint> elements;    // location of each array element
 };
 
 class Program {
