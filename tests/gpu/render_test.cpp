@@ -10,7 +10,7 @@
 #include "core/capture.h"
 #include "core/renderer.h"
 #include "core/scene.h"
-#include "headless/egl_context.h"
+#include "egl_fixture.h"
 #include "support.h"
 
 namespace rm {
@@ -30,26 +30,17 @@ std::vector<float> read_pixels(const std::filesystem::path& path, int* width = n
   return px;
 }
 
-class Gpu : public ::testing::Test {
+class Gpu : public test::EglTest {
  protected:
-  static void SetUpTestSuite() {
-    std::string error;
-    context_ = EglContext::create(&error).release();
-    ASSERT_NE(context_, nullptr) << error;
-  }
-  static void TearDownTestSuite() { delete context_; }
-
   Image render(Scene& scene, glm::ivec2 size, FrameInputs in = {}) {
     in.resolution = glm::vec3(size, 1.0f);
     return renderer_.render_image(*scene.program(), in, channels_, size);
   }
 
-  static EglContext* context_;
   Renderer renderer_;
   Channels channels_;
   TempDir dir_;
 };
-EglContext* Gpu::context_ = nullptr;
 
 TEST_F(Gpu, InputsReachTheShaderExactly) {
   write_file(dir_ / "inputs.frag", R"(

@@ -5,7 +5,7 @@
 #include <functional>
 #include <random>
 
-#include "headless/egl_context.h"
+#include "egl_fixture.h"
 #include "probe.h"
 
 namespace rm {
@@ -13,15 +13,8 @@ namespace {
 
 using glm::vec3;
 
-class Sdf : public ::testing::Test {
+class Sdf : public test::EglTest {
  protected:
-  static void SetUpTestSuite() {
-    std::string error;
-    context_ = EglContext::create(&error).release();
-    ASSERT_NE(context_, nullptr) << error;
-  }
-  static void TearDownTestSuite() { delete context_; }
-
   // Random points in [-3, 3]^3.
   static std::vector<glm::vec4> points(int n) {
     std::mt19937 rng(1234);
@@ -44,10 +37,7 @@ class Sdf : public ::testing::Test {
     }
     EXPECT_LT(worst, 1e-5) << glsl;
   }
-
-  static EglContext* context_;
 };
-EglContext* Sdf::context_ = nullptr;
 
 TEST_F(Sdf, SphereIsExact) {
   expect_matches("sdSphere(P.xyz, 1.3)", [](glm::dvec3 p) { return glm::length(p) - 1.3; });
