@@ -4,11 +4,14 @@
 
 #include <sys/wait.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace rm::test {
 
@@ -44,6 +47,15 @@ inline void write_file(const fs::path& path, const std::string& text) {
 inline std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// An image file's pixels as RGBA floats, top row first; empty if unreadable.
+inline std::vector<float> read_pixels(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return {};
+  std::vector<float> px(static_cast<size_t>(in->spec().image_pixels()) * 4);
+  in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, px.data());
+  return px;
 }
 
 struct Outcome {

@@ -36,7 +36,8 @@ int column_in_line(const std::string& message, const std::string& line_text) {
   static const std::regex unexpected(R"(unexpected ([A-Z_]+))");
   std::smatch m;
   std::string needle;
-  if (std::regex_search(message, m, unexpected) && token_spelling(m[1].str())) needle = token_spelling(m[1].str());
+  const char* spelling = std::regex_search(message, m, unexpected) ? token_spelling(m[1].str()) : nullptr;
+  if (spelling) needle = spelling;
   else if (std::regex_search(message, m, quoted)) needle = m[1].str();
   if (needle.empty()) return 0;
   size_t at = line_text.find(needle);

@@ -2,8 +2,6 @@
 // of shader renders, failures keep the last good program, tiles match.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstdio>
 #include <cstdlib>
 
@@ -19,16 +17,8 @@ namespace {
 using test::TempDir;
 using test::write_file;
 
+using test::read_pixels;
 using test::run_binary;
-
-std::vector<float> read_pixels(const std::filesystem::path& path, int* width = nullptr) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return {};
-  if (width) *width = in->spec().width;
-  std::vector<float> px(static_cast<size_t>(in->spec().image_pixels()) * 4);
-  in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, px.data());
-  return px;
-}
 
 class Gpu : public test::EglTest {
  protected:

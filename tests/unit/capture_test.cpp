@@ -4,14 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include "headless/render_command.h"
 #include "support.h"
 
 namespace rm {
 namespace {
 
+using test::read_pixels;
 using test::TempDir;
 
 Image gradient() {
@@ -22,14 +21,6 @@ Image gradient() {
 
 int files_in(const std::filesystem::path& dir) {
   return static_cast<int>(std::distance(std::filesystem::directory_iterator(dir), {}));
-}
-
-std::vector<float> read_pixels(const std::filesystem::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  EXPECT_TRUE(in);
-  std::vector<float> px(static_cast<size_t>(in->spec().image_pixels()) * in->spec().nchannels);
-  in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, px.data());
-  return px;
 }
 
 TEST(Capture, NeverOverwriteAddsANumberAndLeavesNoTemporaries) {
@@ -59,6 +50,8 @@ TEST(Capture, PngClampsExrKeepsRawFloats) {
   ASSERT_TRUE(write_image(dir / "a.exr", gradient(), {}, Overwrite::Replace, &error)) << error;
   auto png = read_pixels(dir / "a.png");
   auto exr = read_pixels(dir / "a.exr");
+  ASSERT_EQ(png.size(), 4u * 2 * 4);
+  ASSERT_EQ(exr.size(), 4u * 2 * 4);
   EXPECT_EQ(png[0], 0.0f);   // -1 clamped
   EXPECT_EQ(png[2], 1.0f);   // 2 clamped
   EXPECT_EQ(exr[0], -1.0f);  // kept
