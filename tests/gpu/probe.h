@@ -2,6 +2,7 @@
 // draw into a float target and reads the results back. The points travel in
 // an RGBA32F texture; fragment i reads point i and writes vec4 result i.
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,46 +17,64 @@
 
 namespace rm::test {
 
-// `expression` may use `vec4 P` (the sample) and anything the `prelude`
-// (e.g. "#include <rm/sdf.glsl>") defines; it must give a vec4.
-// Returns nullopt (with *error) if the shader does not build.
+class Probe {
+ public:
+  // `expression` may use `vec4 P` (the sample) and anything the `prelude`
+  // (e.g. "#include <rm/sdf.glsl>") defines; it must give a vec4.
+  // Returns nullptr (with *error) if the shader does not build.
+  static std::unique_ptr<Probe> build(const std::string& prelude, const std::string& expression, std::string* error) {
+    TempDir dir;
+    write_file(dir / "probe.frag", "#version 450 core\n" + prelude +
+                                       "\nuniform sampler2D points;\nout vec4 result;\n"
+                                       "void main() {\n  vec4 P = texelFetch(points, ivec2(gl_FragCoord.xy), 0);\n"
+                                       "  result = " + expression + ";\n}\n");
+    SourceOptions options;
+    options.shaderlib_dir = shaderlib_dir();
+    auto scene = std::make_unique<Scene>(dir / "probe.frag", options);
+    if (scene->reload() != ReloadStatus::Swapped) {
+      *error = join(scene->diagnostics());
+      return nullptr;
+    }
+    return std::unique_ptr<Probe>(new Probe(std::move(scene)));
+  }
+
+  std::vector<glm::vec4> run(const std::vector<glm::vec4>& points) {
+    constexpr int kWidth = 256;
+    const int count = static_cast<int>(points.size());
+    const int height = std::max(1, (count + kWidth - 1) / kWidth);
+    std::vector<float> texels(static_cast<size_t>(kWidth) * height * 4, 0.0f);
+    for (int i = 0; i < count; ++i)
+      for (int c = 0; c < 4; ++c) texels[static_cast<size_t>(i) * 4 + c] = points[static_cast<size_t>(i)][c];
+    gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture.get(), 1, GL_RGBA32F, kWidth, height);
+    glTextureSubImage2D(texture.get(), 0, 0, 0, kWidth, height, GL_RGBA, GL_FLOAT, texels.data());
+    glBindTextureUnit(0, texture.get());
+    scene_->program()->set_sampler("points", 0);
+
+    RenderTarget target(kWidth, height);
+    target.bind();
+    glUseProgram(scene_->program()->id());
+    glViewport(0, 0, kWidth, height);
+    gl::VertexArray vao = gl::make_vertex_array();
+    glBindVertexArray(vao.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    const Image image = target.read().flipped();  // back to GL order: row 0 = points 0..255
+    std::vector<glm::vec4> out(points.size());
+    for (int i = 0; i < count; ++i) out[static_cast<size_t>(i)] = glm::make_vec4(&image.rgba[static_cast<size_t>(i) * 4]);
+    return out;
+  }
+
+ private:
+  explicit Probe(std::unique_ptr<Scene> scene) : scene_(std::move(scene)) {}
+  std::unique_ptr<Scene> scene_;
+};
+
+// One-shot probe: build, run once. Returns nullopt (with *error) if the shader does not build.
 inline std::optional<std::vector<glm::vec4>> probe(const std::string& prelude, const std::string& expression,
                                                    const std::vector<glm::vec4>& points, std::string* error) {
-  constexpr int kWidth = 256;
-  const int count = static_cast<int>(points.size());
-  const int height = (count + kWidth - 1) / kWidth;
-  TempDir dir;
-  write_file(dir / "probe.frag", "#version 450 core\n" + prelude +
-                                     "\nuniform sampler2D points;\nout vec4 result;\n"
-                                     "void main() {\n  vec4 P = texelFetch(points, ivec2(gl_FragCoord.xy), 0);\n"
-                                     "  result = " + expression + ";\n}\n");
-  SourceOptions options;
-  options.shaderlib_dir = shaderlib_dir();
-  Scene scene(dir / "probe.frag", options);
-  if (scene.reload() != ReloadStatus::Swapped) {
-    *error = join(scene.diagnostics());
-    return std::nullopt;
-  }
-  std::vector<float> texels(static_cast<size_t>(kWidth) * height * 4, 0.0f);
-  for (int i = 0; i < count; ++i)
-    for (int c = 0; c < 4; ++c) texels[static_cast<size_t>(i) * 4 + c] = points[static_cast<size_t>(i)][c];
-  gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
-  glTextureStorage2D(texture.get(), 1, GL_RGBA32F, kWidth, height);
-  glTextureSubImage2D(texture.get(), 0, 0, 0, kWidth, height, GL_RGBA, GL_FLOAT, texels.data());
-  glBindTextureUnit(0, texture.get());
-  scene.program()->set_sampler("points", 0);
-
-  RenderTarget target(kWidth, height);
-  target.bind();
-  glUseProgram(scene.program()->id());
-  glViewport(0, 0, kWidth, height);
-  gl::VertexArray vao = gl::make_vertex_array();
-  glBindVertexArray(vao.get());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  const Image image = target.read().flipped();  // back to GL order: row 0 = points 0..255
-  std::vector<glm::vec4> out(points.size());
-  for (int i = 0; i < count; ++i) out[static_cast<size_t>(i)] = glm::make_vec4(&image.rgba[static_cast<size_t>(i) * 4]);
-  return out;
+  auto p = Probe::build(prelude, expression, error);
+  if (!p) return std::nullopt;
+  return p->run(points);
 }
 
 }  // namespace rm::test

@@ -1,0 +1,54 @@
+// rm/normals.glsl: surface normals of the scene's map() from its gradient.
+// Provides: rmNormalEpsilon, rmNormalTetrahedron, rmNormalCentral, rmNormal.
+// Needs: the scene's `float map(vec3 p)`; rm/common.glsl (included).
+// Knobs: RM_NORMAL_EPSILON (smallest step), RM_NORMAL_TAPS (4 or 6).
+// Normals are unit length; where the gradient vanishes (a sphere's centre, a
+// medial point) they fall back to +y instead of NaN.
+#ifndef RM_NORMALS_GLSL
+#define RM_NORMALS_GLSL
+
+#include <rm/common.glsl>
+
+#ifndef RM_NORMAL_EPSILON
+#define RM_NORMAL_EPSILON 1e-4
+#endif
+#ifndef RM_NORMAL_TAPS
+#define RM_NORMAL_TAPS 4
+#endif
+
+float map(vec3 p);
+
+// Finite-difference step at p for a hit found within `tolerance`: it grows with
+// the pixel footprint and stays far above float spacing at |p| (64 ulps).
+float rmNormalEpsilon(vec3 p, float tolerance) {
+  return max(max(RM_NORMAL_EPSILON, tolerance), 7.6e-6 * rmMaxComponent(abs(p)));
+}
+
+// Normal from 4 taps on a tetrahedron of half-size eps (iq's method).
+vec3 rmNormalTetrahedron(vec3 p, float eps) {
+  const vec2 k = vec2(1.0, -1.0);
+  vec3 g = k.xyy * map(p + k.xyy * eps) + k.yyx * map(p + k.yyx * eps) +
+           k.yxy * map(p + k.yxy * eps) + k.xxx * map(p + k.xxx * eps);
+  return rmSafeNormalize(g, vec3(0.0, 1.0, 0.0));
+}
+
+// Normal from 6 taps of central differences with step eps.
+vec3 rmNormalCentral(vec3 p, float eps) {
+  const vec2 h = vec2(1.0, 0.0);
+  vec3 g = vec3(map(p + h.xyy * eps) - map(p - h.xyy * eps), map(p + h.yxy * eps) - map(p - h.yxy * eps),
+                map(p + h.yyx * eps) - map(p - h.yyx * eps));
+  return rmSafeNormalize(g, vec3(0.0, 1.0, 0.0));
+}
+
+// Normal at a hit point p found within `tolerance` (RmMarch.tolerance), by
+// the method RM_NORMAL_TAPS selects.
+vec3 rmNormal(vec3 p, float tolerance) {
+  float eps = rmNormalEpsilon(p, tolerance);
+#if RM_NORMAL_TAPS == 6
+  return rmNormalCentral(p, eps);
+#else
+  return rmNormalTetrahedron(p, eps);
+#endif
+}
+
+#endif  // RM_NORMALS_GLSL

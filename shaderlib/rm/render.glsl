@@ -1,0 +1,175 @@
+// rm/render.glsl: the whole picture for a scene that gives only its geometry
+// and its look. It marches the primary ray, shades the hit with every light,
+// and follows reflection and refraction rays in a bounded loop.
+// Provides: rmBackground, rmDirectLight, rmRender.
+// Needs (the scene contract):
+//   float map(vec3 p);                    a bound distance to the scene
+//   RmMaterial material(vec3 p, vec3 n);  the look at hit point p, normal n
+//   with RM_GROUND:  RmMaterial groundMaterial(vec3 p);
+//   with RM_LIGHT_COUNT: RmLight light(int i) for i < RM_LIGHT_COUNT
+//     (otherwise one white sun that a left-button drag moves, via iMouse);
+//   with RM_SCENE_BACKGROUND: vec3 background(vec3 rd).
+//   Includes rm/march, rm/normals, rm/lighting and rm/optics.
+// Effects are compiled in only when the scene asks (#define before the include
+// or -D on the command line); asking for nothing gives direct light only:
+//   RM_SHADOWS 1 hard, 2 soft (k h / t), 3 soft (iq's improved form)
+//   RM_SHADOW_SHARPNESS k of the soft shadows (default 16)
+//   RM_AO          ambient occlusion
+//   RM_BOUNCES n   reflection and refraction rays per pixel (default 0)
+//   RM_FOG d       exponential fog of density d
+//   RM_GROUND h    an analytic ground plane y = h, kept out of map() (the march
+//                  meets it exactly; it casts no shadow and gives no AO)
+// Secondary rays are spent only where the material asks for them: shadow rays
+// for lit sides, reflection rays for reflectivity > 0, refraction for transparency > 0.
+#ifndef RM_RENDER_GLSL
+#define RM_RENDER_GLSL
+
+#include <rm/lighting.glsl>
+#include <rm/march.glsl>
+#include <rm/normals.glsl>
+#include <rm/optics.glsl>
+
+#ifndef RM_BOUNCES
+#define RM_BOUNCES 0
+#endif
+#ifndef RM_SHADOW_SHARPNESS
+#define RM_SHADOW_SHARPNESS 16.0
+#endif
+// Sky light reaching every surface, before AO.
+#ifndef RM_AMBIENT
+#define RM_AMBIENT 0.12
+#endif
+
+RmMaterial material(vec3 p, vec3 n);
+#ifdef RM_GROUND
+RmMaterial groundMaterial(vec3 p);
+#endif
+
+#ifdef RM_LIGHT_COUNT
+RmLight light(int i);
+#else
+#define RM_LIGHT_COUNT 1
+// One white sun; a left-button drag moves it.
+RmLight light(int i) {
+  return rmDirectionalLight(rmMouseLightDirection(iMouse, iResolution.xy, vec3(0.6, 0.7, 0.4)), vec3(1.0));
+}
+#endif
+
+#ifdef RM_SCENE_BACKGROUND
+vec3 background(vec3 rd);
+vec3 rmBackground(vec3 rd) { return background(rd); }
+#else
+// A plain sky: pale at the horizon, deeper blue above, darker below.
+vec3 rmBackground(vec3 rd) {
+  return rd.y >= 0.0 ? mix(vec3(0.62, 0.7, 0.8), vec3(0.25, 0.4, 0.7), rd.y) : vec3(0.3, 0.32, 0.35);
+}
+#endif
+
+// Ambient plus every light at p (normal n, v toward the viewer) on material m;
+// `offset` lifts shadow rays off the surface.
+vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
+  float occlusion = 1.0;
+#ifdef RM_AO
+  occlusion = rmAmbientOcclusion(p, n);
+#endif
+  vec3 color = m.albedo * RM_AMBIENT * occlusion * (0.6 + 0.4 * n.y);
+  for (int i = 0; i < RM_LIGHT_COUNT; ++i) {
+    RmLight l = light(i);
+    float visible = 1.0;
+#ifdef RM_SHADOWS
+    vec3 toLight = rmLightDirection(l, p);
+    if (dot(n, toLight) > 0.0) {  // the dark side needs no shadow ray
+      vec3 from = p + n * offset;
+      float reach = min(rmLightDistance(l, p), RM_MAX_DISTANCE);
+#if RM_SHADOWS == 1
+      visible = rmHardShadow(from, toLight, offset, reach);
+#elif RM_SHADOWS == 2
+      visible = rmSoftShadow(from, toLight, offset, reach, RM_SHADOW_SHARPNESS);
+#else
+      visible = rmSoftShadowImproved(from, toLight, offset, reach, RM_SHADOW_SHARPNESS);
+#endif
+    }
+#endif
+    color += rmShade(p, n, v, m, l, visible);
+  }
+  return color;
+}
+
+// Colour (linear) seen along the ray ro + t rd; `cone` is the pixel cone
+// (rmPixelCone) that sets the hit threshold.
+vec3 rmRender(vec3 ro, vec3 rd, float cone) {
+  RmMarchSettings s = rmMarchSettings();
+  s.cone = cone;
+#ifdef RM_GROUND
+  s.groundHeight = RM_GROUND;
+#endif
+  vec3 primary = rd;
+  vec3 color = vec3(0.0);
+  vec3 throughput = vec3(1.0);  // what is left of the pixel's light after the bounces so far
+  float firstT = RM_MAX_DISTANCE;
+  bool inside = false;          // travelling through a transparent solid
+  RmMaterial medium;            // that solid's material
+  for (int bounce = 0; bounce <= RM_BOUNCES; ++bounce) {
+    s.side = inside ? -1.0 : 1.0;
+#ifdef RM_GROUND
+    s.ground = !inside;
+#endif
+    RmMarch m = rmMarch(ro, rd, s);
+    if (m.outcome != RM_HIT) {
+      color += throughput * rmBackground(rd);
+      break;
+    }
+    vec3 p = ro + rd * m.t;
+    vec3 n = m.ground ? vec3(0.0, 1.0, 0.0) : rmNormal(p, m.tolerance);
+    float offset = rmSurfaceOffset(p, m.tolerance);
+    if (bounce == 0) firstT = m.t;
+
+    if (inside) {
+      // Leaving the solid: absorb along the way, then refract out or reflect back in.
+      throughput *= rmBeer(medium.absorption, m.t);
+      bool tir;
+      rd = rmRefract(rd, n, medium.ior, tir);
+      inside = tir;
+      ro = p + (tir ? -n : n) * offset;
+      continue;
+    }
+
+#ifdef RM_GROUND
+    RmMaterial mat = m.ground ? groundMaterial(p) : material(p, n);
+#else
+    RmMaterial mat = material(p, n);
+#endif
+    float fresnel = mat.transparency > 0.0 ? rmFresnel(rd, n, mat.ior) : 0.0;
+    float reflected = clamp(mat.reflectivity + mat.transparency * fresnel, 0.0, 1.0);
+    float refracted = mat.transparency * (1.0 - fresnel);
+    float diffuse = max(1.0 - mat.reflectivity - mat.transparency, 0.0);
+    color += throughput * (mat.emission + diffuse * rmDirectLight(p, n, -rd, mat, offset));
+
+#if RM_BOUNCES > 0
+    if (refracted > 0.0) {
+      // Follow the refracted ray; the reflected share sees the sky.
+      color += throughput * reflected * rmBackground(reflect(rd, n));
+      throughput *= refracted;
+      bool tir;
+      rd = rmRefract(rd, n, mat.ior, tir);
+      inside = !tir;
+      medium = mat;
+      ro = p + (inside ? -n : n) * offset;
+    } else if (reflected > 0.0) {
+      throughput *= reflected;
+      rd = reflect(rd, n);
+      ro = p + n * offset;
+    } else {
+      break;
+    }
+#else
+    break;
+#endif
+  }
+#ifdef RM_FOG
+  color = rmFog(color, rmBackground(primary), firstT, RM_FOG);
+#endif
+  return color;
+}
+
+#endif  // RM_RENDER_GLSL
