@@ -30,7 +30,8 @@
 #ifndef RM_HIT_EPSILON
 #define RM_HIT_EPSILON 1e-4
 #endif
-// Over-relaxation factor: 1 is plain sphere tracing; up to about 1.6 is useful.
+// Over-relaxation factor: 1 is plain sphere tracing. 1.2 saved 16% of the steps
+// in a view with a floor; head-on views gain nothing (docs/shaderlib.md).
 #ifndef RM_OMEGA
 #define RM_OMEGA 1.2
 #endif

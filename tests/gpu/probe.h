@@ -1,6 +1,7 @@
 // Probe: evaluates a GLSL expression at thousands of sample points in one
 // draw into a float target and reads the results back. The points travel in
-// an RGBA32F texture; fragment i reads point i and writes vec4 result i.
+// an RGBA32F texture; fragment i reads point i (and an optional second input)
+// and writes vec4 result i.
 #pragma once
 #include <memory>
 #include <optional>
@@ -19,14 +20,16 @@ namespace rm::test {
 
 class Probe {
  public:
-  // `expression` may use `vec4 P` (the sample) and anything the `prelude`
+  // `expression` may use `vec4 P` (the sample), `vec4 Q` (its second input,
+  // zero unless given) and anything the `prelude`
   // (e.g. "#include <rm/sdf.glsl>") defines; it must give a vec4.
   // Returns nullptr (with *error) if the shader does not build.
   static std::unique_ptr<Probe> build(const std::string& prelude, const std::string& expression, std::string* error) {
     TempDir dir;
     write_file(dir / "probe.frag", "#version 450 core\n" + prelude +
-                                       "\nuniform sampler2D points;\nout vec4 result;\n"
+                                       "\nuniform sampler2D points;\nuniform sampler2D extras;\nout vec4 result;\n"
                                        "void main() {\n  vec4 P = texelFetch(points, ivec2(gl_FragCoord.xy), 0);\n"
+                                       "  vec4 Q = texelFetch(extras, ivec2(gl_FragCoord.xy), 0);\n"
                                        "  result = " + expression + ";\n}\n");
     SourceOptions options;
     options.shaderlib_dir = shaderlib_dir();
@@ -38,18 +41,23 @@ class Probe {
     return std::unique_ptr<Probe>(new Probe(std::move(scene)));
   }
 
-  std::vector<glm::vec4> run(const std::vector<glm::vec4>& points) {
+  std::vector<glm::vec4> run(const std::vector<glm::vec4>& points, const std::vector<glm::vec4>& extras = {}) {
     constexpr int kWidth = 256;
     const int count = static_cast<int>(points.size());
     const int height = std::max(1, (count + kWidth - 1) / kWidth);
-    std::vector<float> texels(static_cast<size_t>(kWidth) * height * 4, 0.0f);
-    for (int i = 0; i < count; ++i)
-      for (int c = 0; c < 4; ++c) texels[static_cast<size_t>(i) * 4 + c] = points[static_cast<size_t>(i)][c];
-    gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.get(), 1, GL_RGBA32F, kWidth, height);
-    glTextureSubImage2D(texture.get(), 0, 0, 0, kWidth, height, GL_RGBA, GL_FLOAT, texels.data());
-    glBindTextureUnit(0, texture.get());
-    scene_->program()->set_sampler("points", 0);
+    auto upload = [&](const std::vector<glm::vec4>& values, GLuint unit, const char* name) {
+      std::vector<float> texels(static_cast<size_t>(kWidth) * height * 4, 0.0f);
+      for (size_t i = 0; i < std::min(values.size(), points.size()); ++i)
+        for (int c = 0; c < 4; ++c) texels[i * 4 + c] = values[i][c];
+      gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+      glTextureStorage2D(texture.get(), 1, GL_RGBA32F, kWidth, height);
+      glTextureSubImage2D(texture.get(), 0, 0, 0, kWidth, height, GL_RGBA, GL_FLOAT, texels.data());
+      glBindTextureUnit(unit, texture.get());
+      scene_->program()->set_sampler(name, static_cast<int>(unit));
+      return texture;
+    };
+    const gl::Texture point_texture = upload(points, 0, "points");
+    const gl::Texture extra_texture = upload(extras, 1, "extras");
 
     RenderTarget target(kWidth, height);
     target.bind();
@@ -71,10 +79,11 @@ class Probe {
 
 // One-shot probe: build, run once. Returns nullopt (with *error) if the shader does not build.
 inline std::optional<std::vector<glm::vec4>> probe(const std::string& prelude, const std::string& expression,
-                                                   const std::vector<glm::vec4>& points, std::string* error) {
+                                                   const std::vector<glm::vec4>& points, std::string* error,
+                                                   const std::vector<glm::vec4>& extras = {}) {
   auto p = Probe::build(prelude, expression, error);
   if (!p) return std::nullopt;
-  return p->run(points);
+  return p->run(points, extras);
 }
 
 }  // namespace rm::test
