@@ -10,7 +10,7 @@
 
 struct RmCamera {
   vec3 position;
-  mat3 basis;   // columns: right, up, forward
+  mat3 basis;   // columns: right, up, forward (determinant -1: forward is the view direction)
   float focal;  // 1 / tan(fovY / 2)
 };
 
@@ -32,7 +32,8 @@ vec3 rmCameraRay(RmCamera camera, vec2 fragCoord, vec3 resolution) {
   return normalize(camera.basis * vec3(uv, camera.focal));
 }
 
-// Half a pixel's angular size: the march's hit threshold per unit t (RmMarchSettings.cone).
+// Half a pixel's footprint per unit of t (tan(fovY / 2) / height): the march's hit
+// threshold per unit t (RmMarchSettings.cone).
 float rmPixelCone(RmCamera camera, vec3 resolution) { return 1.0 / (camera.focal * max(resolution.y, 1.0)); }
 
 // Eye position orbiting target at `distance`: yaw turns around +y from +z, pitch raises it (radians).

@@ -138,19 +138,26 @@ float rmSoftShadow(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
 // two steps, which removes the banding of the classic form. Same k.
 float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   float shade = 1.0;
-  float previousH = 1e20;
+  float previousH = 0.0;
+  float stepLength = 0.0;
   float t = max(tMin, 1e-6);
   for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
     float h = map(ro + rd * t);
     if (h <= 0.0) return 0.0;
-    // y is where the two unbounding spheres' chord is closest to the occluder; when
-    // h > 2 previousH (clamped steps, bound fields) y > h, so clamp the root.
-    float y = h * h / (2.0 * previousH);
-    float d = sqrt(max(h * h - y * y, 0.0));
+    // The occluder is nearest where the spheres of this and the last step meet:
+    // y back along the ray, d off it. iq writes y = h^2 / (2 previousH), which
+    // assumes the step equalled previousH; clamped steps break that, and when
+    // one sphere holds the other (h >= 2 previousH) there is no chord and
+    // sqrt(h^2 - y^2) would be NaN or 0. Then fall back to the classic estimate.
+    float y = stepLength > 0.0 ? (h * h - previousH * previousH + stepLength * stepLength) / (2.0 * stepLength) : 0.0;
+    float d = h;
+    if (y > 0.0 && y < h) d = sqrt(h * h - y * y);
+    else y = 0.0;
     shade = min(shade, k * d / max(t - y, 1e-6));
     if (shade < 1e-3) break;
     previousH = h;
-    t += clamp(h, 1e-3, 0.5);
+    stepLength = clamp(h, 1e-3, 0.5);
+    t += stepLength;
   }
   return clamp(shade, 0.0, 1.0);
 }

@@ -22,7 +22,7 @@
 #ifndef RM_MAX_DISTANCE
 #define RM_MAX_DISTANCE 100.0
 #endif
-// Hit threshold per unit of t: half a pixel's angular size (see rmPixelCone).
+// Hit threshold per unit of t: half a pixel's footprint (see rmPixelCone).
 #ifndef RM_HIT_CONE
 #define RM_HIT_CONE 1e-3
 #endif

@@ -4,7 +4,8 @@
 //   opSmoothIntersection, opSmoothSubtraction, opSmoothUnionBlend,
 //   opSmoothIntersectionBlend, opSmoothSubtractionBlend, opChamferUnion,
 //   opChamferIntersection, opChamferSubtraction, opRoundUnion,
-//   opRoundIntersection, opRoundSubtraction, RmHit, rmHit, rmHitBlend.
+//   opRoundIntersection, opRoundSubtraction, RmHit, rmHit, rmHitBlend,
+//   rmBlendHits.
 // Needs: nothing.
 // Classes: with exact inputs, a union is exact outside and a bound inside;
 // intersection and subtraction are bounds, and so are the smooth variants

@@ -1,8 +1,9 @@
 // rm/render.glsl: the whole picture for a scene that gives only its geometry
 // and its look. It marches the primary ray, shades the hit with every light,
 // and follows reflection and refraction rays in a bounded loop.
-// Provides: rmBackground, rmDirectLight, rmRender.
-// Needs (the scene contract):
+// Provides: rmBackground, rmDirectLight, rmRender, and light() when the scene
+//   defines no lights.
+// Needs: the scene contract:
 //   float map(vec3 p);                    a bound distance to the scene
 //   RmMaterial material(vec3 p, vec3 n);  the look at hit point p, normal n
 //   with RM_GROUND:  RmMaterial groundMaterial(vec3 p);
@@ -57,6 +58,7 @@ RmLight light(int i) {
 
 #ifdef RM_SCENE_BACKGROUND
 vec3 background(vec3 rd);
+// The scene's background(rd).
 vec3 rmBackground(vec3 rd) { return background(rd); }
 #else
 // A plain sky: pale at the horizon, deeper blue above, darker below.

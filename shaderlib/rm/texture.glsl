@@ -18,12 +18,16 @@ uint rmHashUint(uint x) {
   return x;
 }
 
-// Uniform value in [0, 1) from a float, vec2 or vec3 (use integer-valued inputs, e.g. floor(p)).
+// Uniform value in [0, 1) from a float (use integer-valued inputs, e.g. floor(x)).
 float rmHash(float p) { return float(rmHashUint(floatBitsToUint(p + 0.0)) >> 8) * (1.0 / 16777216.0); }
+
+// Uniform value in [0, 1) from a vec2 lattice point.
 float rmHash(vec2 p) {
   uvec2 b = floatBitsToUint(p + 0.0);  // + 0.0 turns -0 into +0
   return float(rmHashUint(b.x ^ rmHashUint(b.y)) >> 8) * (1.0 / 16777216.0);
 }
+
+// Uniform value in [0, 1) from a vec3 lattice point.
 float rmHash(vec3 p) {
   uvec3 b = floatBitsToUint(p + 0.0);
   return float(rmHashUint(b.x ^ rmHashUint(b.y ^ rmHashUint(b.z))) >> 8) * (1.0 / 16777216.0);
