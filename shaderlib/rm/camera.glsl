@@ -8,6 +8,7 @@
 
 #include <rm/common.glsl>
 
+// A pinhole camera; make one with rmLookAt.
 struct RmCamera {
   vec3 position;
   mat3 basis;   // columns: right, up, forward (determinant -1: forward is the view direction)

@@ -15,9 +15,11 @@
 
 #include <rm/common.glsl>
 
+// Most map() evaluations per shadow ray.
 #ifndef RM_SHADOW_STEPS
 #define RM_SHADOW_STEPS 64
 #endif
+// map() evaluations per ambient occlusion estimate (plus one).
 #ifndef RM_AO_SAMPLES
 #define RM_AO_SAMPLES 5
 #endif
@@ -45,6 +47,7 @@ const int RM_POINT_LIGHT = 0;
 const int RM_DIRECTIONAL_LIGHT = 1;
 const int RM_SPOT_LIGHT = 2;
 
+// A light; make one with rmPointLight, rmDirectionalLight or rmSpotLight.
 struct RmLight {
   int type;         // RM_POINT_LIGHT, RM_DIRECTIONAL_LIGHT or RM_SPOT_LIGHT
   vec3 position;    // point and spot lights

@@ -43,6 +43,7 @@ const int RM_HIT = 0;           // map() fell below the threshold
 const int RM_MISS = 1;          // the ray left [tMin, tMax] or the bounds
 const int RM_OUT_OF_STEPS = 2;  // maxSteps ran out first
 
+// How rmMarch marches; rmMarchSettings() gives the defaults from the knobs.
 struct RmMarchSettings {
   float tMin;          // where the ray starts
   float tMax;          // where it gives up
@@ -59,6 +60,7 @@ struct RmMarchSettings {
   vec3 boundMax;
 };
 
+// What rmMarch found.
 struct RmMarch {
   float t;          // distance along the ray (of the hit, or where the march stopped)
   int steps;        // map() evaluations spent

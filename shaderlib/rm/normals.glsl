@@ -9,9 +9,11 @@
 
 #include <rm/common.glsl>
 
+// Smallest finite-difference step.
 #ifndef RM_NORMAL_EPSILON
 #define RM_NORMAL_EPSILON 1e-4
 #endif
+// 4: tetrahedron taps; 6: central differences.
 #ifndef RM_NORMAL_TAPS
 #define RM_NORMAL_TAPS 4
 #endif

@@ -30,9 +30,11 @@
 #include <rm/normals.glsl>
 #include <rm/optics.glsl>
 
+// Reflection and refraction rays followed per pixel.
 #ifndef RM_BOUNCES
 #define RM_BOUNCES 0
 #endif
+// k of the soft shadows: larger is sharper.
 #ifndef RM_SHADOW_SHARPNESS
 #define RM_SHADOW_SHARPNESS 16.0
 #endif

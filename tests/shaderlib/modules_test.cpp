@@ -66,26 +66,27 @@ TEST_P(Module, HasAHeaderAndAnIncludeGuard) {
   EXPECT_NE(text.find("#endif  // " + guard), std::string::npos);
 }
 
-// Every function definition follows a comment; sd* comments give the class;
-// every function and type is listed under Provides.
+// Every function and struct definition follows a comment; sd* comments give
+// the class; every function and type is listed under Provides.
 TEST_P(Module, DocumentsEveryFunction) {
   const std::string& name = GetParam();
   const std::string text = module_text(name);
   const std::string provides = text.substr(text.find("// Provides:"), text.find("// Needs:") - text.find("// Provides:"));
-  static const std::regex function(R"(^(?:float|vec[234]|mat[234]|int|uint|bool|Rm\w+) (\w+)\(.*\) \{)");
+  static const std::regex function(R"(^(?:float|vec[234]|mat[234]|int|uint|bool|Rm\w+) (\w+)\(.*\) \{|^struct (\w+) \{)");
   std::istringstream lines(text);
   std::string line, previous;
   std::set<std::string> seen;
   while (std::getline(lines, line)) {
     std::smatch m;
     if (std::regex_search(line, m, function)) {
-      const std::string fn = m[1];
+      const std::string fn = m[1].matched ? m[1].str() : m[2].str();
       if (fn.rfind("sd", 0) == 0)
         EXPECT_TRUE(std::regex_search(previous, std::regex(R"(\b(exact|bound|approximate)\b)")) ||
                     std::regex_search(previous, function))
             << fn << ": the comment must give the distance class";
       // Overloads may share the comment above the first of them.
-      const bool overload = std::regex_search(previous, m, function) && m[1] == fn;
+      std::smatch before;
+      const bool overload = std::regex_search(previous, before, function) && before[1] == fn;
       EXPECT_TRUE(previous.rfind("//", 0) == 0 || overload) << fn << " has no comment";
       if (seen.insert(fn).second)
         EXPECT_TRUE(std::regex_search(provides, std::regex("\\b" + fn + "\\b"))) << fn << " is not under Provides";
