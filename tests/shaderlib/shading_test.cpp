@@ -191,5 +191,23 @@ TEST_F(Lighting, MouseDragMovesTheLight) {
   for (const auto& v : got) EXPECT_NEAR(glm::length(glm::vec3(v)), 1.0, 1e-5);
 }
 
+class Texture : public EglTest {};
+
+// Triplanar mapping reads any sampler2D (iChannelN in a scene; here the
+// probe's second input, filled with one colour): its three projections are
+// weighted to sum to 1 for every normal, so a uniform texture comes back as is.
+TEST_F(Texture, TriplanarWeightsSumToOne) {
+  std::mt19937 rng(9);
+  std::normal_distribution<float> normal;
+  std::vector<glm::vec4> ps = {{1, 0, 0, 0}, {0, -1, 0, 0}, {0, 0, 1, 0}, {1e-20f, 0, 0, 0}};
+  while (ps.size() < 1024) ps.emplace_back(normal(rng), normal(rng), normal(rng), 0);  // fills the texture: no zero padding
+  const std::vector<glm::vec4> colour(ps.size(), glm::vec4(0.25f, 0.5f, 0.75f, 1.0f));
+  const auto got = eval("#include <rm/common.glsl>\n#include <rm/texture.glsl>\n",
+                        "rmTriplanar(extras, P.xyz * 3.7, rmSafeNormalize(P.xyz, vec3(0.0, 1.0, 0.0)), 0.5, 4.0)", ps,
+                        colour);
+  for (size_t i = 0; i < got.size(); ++i)
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[i][c], colour[i][c], 1e-5) << "normal " << i;
+}
+
 }  // namespace
 }  // namespace rm::test
