@@ -102,7 +102,9 @@ vec2 opRepeatPolar(vec2 p, float n, out float cell) {
 // approximate, Lipschitz opTwistLipschitz(k, r)
 vec3 opTwist(vec3 p, float k) { return vec3(rmRotation2(k * p.y) * p.xz, p.y).xzy; }
 
-// Lipschitz constant of opTwist(p, k) for a shape within distance r of the y axis.
+// Lipschitz constant of opTwist(p, k) where the field is evaluated within distance
+// r of the y axis (the stretch grows with the distance, so take the larger of the
+// shape's radius and the query point's, e.g. max(length(p.xz), shapeRadius)).
 float opTwistLipschitz(float k, float r) {
   float a = abs(k) * r;  // largest singular value of the twist's Jacobian
   return 0.5 * (a + sqrt(a * a + 4.0));
@@ -112,7 +114,8 @@ float opTwistLipschitz(float k, float r) {
 // approximate, Lipschitz opBendLipschitz(k, r)
 vec3 opBend(vec3 p, float k) { return vec3(rmRotation2(k * p.x) * p.xy, p.z); }
 
-// Lipschitz constant of opBend(p, k) for a shape within distance r of the origin in xy.
+// Lipschitz constant of opBend(p, k) where the field is evaluated within distance r
+// of the origin in xy (as for opTwistLipschitz).
 float opBendLipschitz(float k, float r) { return 1.0 + abs(k) * r; }
 
 // Point for a shape stretched by h along each axis (its centre becomes a box of
