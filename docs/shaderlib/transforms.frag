@@ -13,11 +13,11 @@ RmHit item(int i, vec3 p) {
   vec3 cell = vec3(0.0);
   float d;
   switch (i) {
-    case 0:  // stretches space: divide by the Lipschitz constant for this radius
-      d = sdBox(opTwist(p, 2.5), vec3(0.2, 0.5, 0.2)) / opTwistLipschitz(2.5, 0.29);
+    case 0:  // stretches space: divide by the Lipschitz constant where p is
+      d = sdBox(opTwist(p, 2.5), vec3(0.2, 0.5, 0.2)) / opTwistLipschitz(2.5, max(length(p.xz), 0.29));
       break;
     case 1:
-      d = sdBox(opBend(p, 1.2), vec3(0.45, 0.08, 0.15)) / opBendLipschitz(1.2, 0.46);
+      d = sdBox(opBend(p, 1.2), vec3(0.45, 0.08, 0.15)) / opBendLipschitz(1.2, max(length(p.xy), 0.46));
       break;
     case 2: {
       float k;
