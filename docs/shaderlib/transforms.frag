@@ -1,6 +1,8 @@
 // rm/transforms.glsl, left to right: twist, bend, polar repetition, limited
 // repetition coloured by cell id, elongation, onion (cut open) and mirror.
-#define RM_SHADOWS 3
+// Classic soft shadows: the improved form reads the jump at the bounding
+// volumes of twist and bend below as a near miss and speckles.
+#define RM_SHADOWS 2
 #define RM_AO
 #define RM_GROUND -0.6
 #include <rm/sdf.glsl>
@@ -13,12 +15,19 @@ RmHit item(int i, vec3 p) {
   vec3 cell = vec3(0.0);
   float d;
   switch (i) {
-    case 0:  // stretches space: divide by the Lipschitz constant where p is
-      d = sdBox(opTwist(p, 2.5), vec3(0.2, 0.5, 0.2)) / opTwistLipschitz(2.5, max(length(p.xz), 0.29));
+    case 0: {
+      // Twist stretches space more the farther from the axis. Inside a tight
+      // bounding volume (within radius 0.4) divide by the constant for that
+      // radius; outside, the distance to the volume is a bound and costs nothing.
+      float bound = sdCappedCylinder(p, 0.33, 0.55);
+      d = bound > 0.05 ? bound : sdBox(opTwist(p, 2.5), vec3(0.2, 0.5, 0.2)) / opTwistLipschitz(2.5, 0.4);
       break;
-    case 1:
-      d = sdBox(opBend(p, 1.2), vec3(0.45, 0.08, 0.15)) / opBendLipschitz(1.2, max(length(p.xy), 0.46));
+    }
+    case 1: {
+      float bound = opExtrude(p, sdCircle(p.xy, 0.5), 0.2);
+      d = bound > 0.05 ? bound : sdBox(opBend(p, 1.2), vec3(0.45, 0.08, 0.15)) / opBendLipschitz(1.2, 0.55);
       break;
+    }
     case 2: {
       float k;
       vec2 q = opRepeatPolar(p.xz, 7.0, k);

@@ -104,7 +104,8 @@ vec3 opTwist(vec3 p, float k) { return vec3(rmRotation2(k * p.y) * p.xz, p.y).xz
 
 // Lipschitz constant of opTwist(p, k) where the field is evaluated within distance
 // r of the y axis (the stretch grows with the distance, so take the larger of the
-// shape's radius and the query point's, e.g. max(length(p.xz), shapeRadius)).
+// shape's radius and the query point's). Use it inside a tight bounding volume
+// within radius r, and outside step by the distance to that volume.
 float opTwistLipschitz(float k, float r) {
   float a = abs(k) * r;  // largest singular value of the twist's Jacobian
   return 0.5 * (a + sqrt(a * a + 4.0));
