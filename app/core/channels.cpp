@@ -39,12 +39,38 @@ std::optional<Image> load_channel_image(const std::filesystem::path& path, std::
 }
 
 Channels::Channels() {
+  for (int i = 0; i < kCount; ++i) clear(i);
+}
+
+void Channels::clear(int index) {
   const float black[4] = {0, 0, 0, 0};
-  for (auto& texture : textures_) {
-    texture = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.get(), 1, GL_RGBA8, 1, 1);
-    glTextureSubImage2D(texture.get(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, black);
+  gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(texture.get(), 1, GL_RGBA8, 1, 1);
+  glTextureSubImage2D(texture.get(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, black);
+  textures_[static_cast<size_t>(index)] = std::move(texture);
+  resolution_[static_cast<size_t>(index)] = glm::vec3(0.0f);
+}
+
+bool Channels::use_scene_defaults(const Paths& scene_defaults, const Paths& from_command_line, std::string* error) {
+  bool ok = true;
+  for (size_t i = 0; i < kCount; ++i) {
+    if (!from_command_line[i].empty() || scene_defaults[i] == scene_defaults_[i]) continue;
+    if (scene_defaults[i].empty()) {
+      clear(static_cast<int>(i));
+      scene_defaults_[i].clear();
+      continue;
+    }
+    std::string why;
+    auto image = load_channel_image(scene_defaults[i], &why);
+    if (!image) {
+      *error = "iChannel" + std::to_string(i) + " '" + scene_defaults[i].string() + "': " + why;
+      ok = false;
+      continue;
+    }
+    set(static_cast<int>(i), *image);
+    scene_defaults_[i] = scene_defaults[i];
   }
+  return ok;
 }
 
 void Channels::set(int index, const Image& file_image) {

@@ -86,6 +86,33 @@ struct IncludeDirective {
   int column = 0;  // 1-based column of the opening quote
 };
 
+struct ChannelPragma {
+  int channel = 0;
+  std::string target;
+  int column = 0;  // 1-based column of "#"
+};
+
+// `#pragma channelN "FILE"`: the scene's default image for iChannelN. Other
+// pragmas are the compiler's. *malformed is set for a channel pragma without
+// a quoted file name.
+std::optional<ChannelPragma> parse_channel_pragma(const std::string& line, bool* malformed) {
+  static const std::regex start(R"(^(\s*)#\s*pragma\s+channel([0-9]+)\b(.*)$)");
+  static const std::regex quoted(R"re(^\s*"([^"]+)"\s*(//.*)?$)re");
+  std::smatch m, q;
+  *malformed = false;
+  if (!std::regex_match(line, m, start)) return std::nullopt;
+  ChannelPragma pragma;
+  pragma.column = static_cast<int>(m[1].length()) + 1;
+  const std::string rest = m[3];
+  if (m[2].length() != 1 || m[2].str()[0] > '3' || !std::regex_match(rest, q, quoted)) {
+    *malformed = true;
+    return pragma;
+  }
+  pragma.channel = m[2].str()[0] - '0';
+  pragma.target = q[1];
+  return pragma;
+}
+
 std::optional<IncludeDirective> parse_include(const std::string& line, bool* malformed) {
   static const std::regex re(R"(^\s*#\s*include\b\s*(.*)$)");
   std::smatch m;
@@ -192,6 +219,21 @@ class Preprocessor {
         continue;  // re-emitted at the top by assemble()
       }
       bool malformed = false;
+      if (auto pragma = parse_channel_pragma(line, &malformed)) {
+        if (malformed) {
+          error(file, line_no, pragma->column, "#pragma channelN expects N in 0..3 and \"FILE\"");
+          break;
+        }
+        const fs::path image = fs::absolute(path.parent_path() / pragma->target).lexically_normal();
+        out_.watch.push_back(image);
+        if (!fs_.exists(image)) {
+          error(file, line_no, pragma->column, "cannot find channel image '" + pragma->target + "'");
+          break;
+        }
+        out_.channels[static_cast<size_t>(pragma->channel)] = image;
+        body_.push_back({"", Origin{file, line_no}});  // the driver never sees it; lines keep their numbers
+        continue;
+      }
       auto inc = parse_include(line, &malformed);
       if (!inc) {
         body_.push_back({line, Origin{file, line_no}});

@@ -8,6 +8,7 @@
 // so that they run unmodified on an OpenGL 4.5 core context. The host's own
 // lines are tracked in the line map too, so they never shift user lines.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -60,6 +61,9 @@ struct Source {
   std::vector<Origin> line_map;    // one entry per line of text (0-based index)
   ShaderKind kind = ShaderKind::Shadertoy;
   std::string version_line;        // the #version line the final text starts with
+  // Default images for iChannel0..3, named in the shader by #pragma channelN "FILE"
+  // (relative to the file that names it); empty where none. A --channelN wins.
+  std::array<fs::path, 4> channels;
   Diagnostics errors;              // preprocessing errors; text is unusable if any
 
   bool ok() const { return errors.empty(); }

@@ -90,6 +90,7 @@ int render_command(const RenderRequest& req) {
   Channels channels;
   for (int i = 0; i < Channels::kCount; ++i)
     if (images[static_cast<size_t>(i)]) channels.set(i, *images[static_cast<size_t>(i)]);
+  if (!channels.use_scene_defaults(scene.source().channels, req.channels, &error)) return fail(error, kExitUsage);
 
   const int count = sequence ? req.frames : 1;
   const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));

@@ -105,6 +105,10 @@ class WindowApp {
     const Diagnostics& diags = scene_.diagnostics();
     if (!diags.empty()) std::cerr << join(diags);
     errors_ = count_errors(diags);
+    std::string channel_error;
+    if (status == ReloadStatus::Swapped &&
+        !channels_.use_scene_defaults(scene_.source().channels, options_.channels, &channel_error))
+      std::cerr << "raymarching: error: " << channel_error << '\n';
     if (options_.verbose)
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
                 << scene_.generation() << '\n';

@@ -78,6 +78,24 @@ void mainImage(out vec4 c, in vec2 f) {
   EXPECT_EQ(glm::vec3(px[12], px[13], px[14]), glm::vec3(0, 0, 1));  // file row 1 (bottom): texel row 0
 }
 
+// A scene's #pragma channel0 is its default image; --channel0 still wins.
+TEST_F(Gpu, SceneDefaultChannelIsUsedUnlessTheCommandLineGivesOne) {
+  std::string error;
+  std::filesystem::create_directories(dir_ / "textures");
+  ASSERT_TRUE(write_image(dir_ / "textures/green.png", Image{1, 1, {0, 1, 0, 1}}, {}, Overwrite::Replace, &error));
+  ASSERT_TRUE(write_image(dir_ / "red.png", Image{1, 1, {1, 0, 0, 1}}, {}, Overwrite::Replace, &error));
+  write_file(dir_ / "ch.frag", "#pragma channel0 \"textures/green.png\"\n"
+                               "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(0), 0); }\n");
+  const std::string render = "render " + (dir_ / "ch.frag").string() + " --size 1x1 -o ";
+  test::Outcome r = run_binary(render + (dir_ / "default.exr").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_pixels(dir_ / "default.exr")[1], 1.0f);
+  r = run_binary(render + (dir_ / "given.exr").string() + " --channel0 " + (dir_ / "red.png").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_pixels(dir_ / "given.exr")[0], 1.0f);
+  EXPECT_EQ(read_pixels(dir_ / "given.exr")[1], 0.0f);
+}
+
 TEST_F(Gpu, AllThreeKindsOfShaderRender) {
   write_file(dir_ / "toy.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.5, f.x / iResolution.x, 1.0); }\n");
   write_file(dir_ / "full.frag",

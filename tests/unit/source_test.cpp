@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "support.h"
 
 namespace rm {
@@ -200,6 +202,41 @@ TEST(Source, InMemoryFileSystemIsUsedForEveryRead) {
   Source s = preprocess("/mem/scene.frag", {}, memory);
   ASSERT_TRUE(s.ok()) << join(s.errors);
   EXPECT_EQ(origin_of(s, "mem_marker"), std::make_pair(std::string("/mem/x.glsl"), 1));
+}
+
+TEST(Source, ChannelPragmaNamesADefaultImageRelativeToItsFile) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib/look.glsl\"\n#pragma channel2 \"tex.png\"  // fallback\n"
+                                 "#pragma optimize(off)\nfloat s_marker;\n" + std::string(kMain));
+  write_file(dir / "lib/look.glsl", "#pragma channel0 \"wood.png\"\nfloat l_marker;\n");
+  write_file(dir / "tex.png", "x");
+  write_file(dir / "lib/wood.png", "x");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.channels[0], dir / "lib/wood.png");
+  EXPECT_TRUE(s.channels[1].empty());
+  EXPECT_EQ(s.channels[2], dir / "tex.png");
+  EXPECT_EQ(s.text.find("channel"), std::string::npos) << "the driver never sees the pragma";
+  EXPECT_NE(s.text.find("#pragma optimize(off)"), std::string::npos) << "other pragmas pass through";
+  EXPECT_EQ(origin_of(s, "s_marker"), std::make_pair((dir / "scene.frag").string(), 4));
+  EXPECT_EQ(origin_of(s, "l_marker"), std::make_pair((dir / "lib/look.glsl").string(), 2));
+  EXPECT_NE(std::find(s.watch.begin(), s.watch.end(), dir / "tex.png"), s.watch.end());
+}
+
+TEST(Source, MissingOrMalformedChannelPragmaIsAnErrorAtItsLine) {
+  TempDir dir;
+  write_file(dir / "a.frag", "\n  #pragma channel1 \"missing.png\"\n" + std::string(kMain));
+  write_file(dir / "b.frag", "#pragma channel4 \"x.png\"\n" + std::string(kMain));
+  write_file(dir / "c.frag", "#pragma channel0 x.png\n" + std::string(kMain));
+  Source a = preprocess(dir / "a.frag", {});
+  ASSERT_EQ(a.errors.size(), 1u);
+  EXPECT_EQ(a.errors[0].str(), (dir / "a.frag").string() + ":2:3: error: cannot find channel image 'missing.png'");
+  for (const char* name : {"b.frag", "c.frag"}) {
+    Source s = preprocess(dir / name, {});
+    ASSERT_EQ(s.errors.size(), 1u) << name;
+    EXPECT_EQ(s.errors[0].line, 1) << name;
+    EXPECT_NE(s.errors[0].message.find("#pragma channelN expects"), std::string::npos) << name;
+  }
 }
 
 TEST(Source, UnreadableSceneIsOneError) {
