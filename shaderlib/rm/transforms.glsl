@@ -3,7 +3,7 @@
 // can be moved, turned, scaled, mirrored, repeated and deformed.
 // Provides: opTranslate, rmRotation2, rmRotationX, rmRotationY, rmRotationZ,
 //   rmRotationAxis, opRotate, opScale, opScaleDistance, opMirror, opSymmetryX,
-//   opSymmetryXZ, opRepeat, opRepeatLimited, opRepeatPolar, opTwist,
+//   opSymmetryXZ, opRepeat, opRepeatBorder, opRepeatLimited, opRepeatPolar, opTwist,
 //   opTwistLipschitz, opBend, opBendLipschitz, opElongate, opRound, opOnion,
 //   opExtrude, opRevolve.
 // Needs: rm/common.glsl (included).
@@ -80,6 +80,12 @@ vec3 opRepeat(vec3 p, vec3 period, out vec3 cell) {
   cell = round(p / period);
   return p - period * cell;
 }
+
+// Distance from a repeated point (opRepeat's result) to its cell's border.
+// Instances that are not mirror-symmetric in their cell (turned by their own
+// hash, say) keep a bound with min(d, opRepeatBorder(q, period) + gap), where
+// gap is the least distance from any cell border to its instance.
+float opRepeatBorder(vec3 q, vec3 period) { return rmMinComponent(0.5 * period - abs(q)); }
 
 // Repetition limited to the cells lo..hi (integer ids, per axis). as opRepeat
 vec3 opRepeatLimited(vec3 p, vec3 period, vec3 lo, vec3 hi, out vec3 cell) {

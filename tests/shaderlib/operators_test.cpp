@@ -175,6 +175,32 @@ TEST_F(Repetition, StaysExactFarFromTheOrigin) {
   }
 }
 
+// Instances turned by their cell's hash are not symmetric in their cells: a
+// neighbour's corner can be nearer than the own instance, so the repeated
+// field overestimates. opRepeatBorder plus the gap every instance leaves (half
+// the period minus the half-diagonal) restores the bound.
+TEST_F(Repetition, BorderTermKeepsTurnedInstancesABound) {
+  const std::string prelude = R"(#include <rm/sdf.glsl>
+#include <rm/transforms.glsl>
+float turned(vec3 p, bool border) {
+  vec3 cell;
+  vec3 q = opRepeat(p, vec3(1.0), cell);
+  float d = sdBox(opRotate(q, rmRotationAxis(cell + vec3(0.3, 0.7, 0.1), 0.8 + cell.x)), vec3(0.28, 0.12, 0.12));
+  return border ? min(d, opRepeatBorder(q, vec3(1.0)) + 0.5 - 0.329) : d;  // half-diagonal 0.329
+}
+)";
+  Field without{"Turned", "turned(p, false)", DistanceClass::Bound, nullptr, 1.0, false};
+  Field with_border{"TurnedWithBorder", "turned(p, true)", DistanceClass::Bound, nullptr, 1.0, false};
+  without.prelude = with_border.prelude = prelude;
+  std::string error;
+  const ContractReport bare = measure_contract(without, &error);
+  ASSERT_TRUE(error.empty()) << error;
+  const ContractReport bounded = measure_contract(with_border, &error);
+  ASSERT_TRUE(error.empty()) << error;
+  EXPECT_GT(bare.worst_excess, 0.01) << "the scene should show the problem";
+  EXPECT_LT(bounded.worst_excess, 2e-5);
+}
+
 // Exactly on a cell boundary the point is half a period from either centre.
 TEST_F(Repetition, IsExactAtCellBoundaries) {
   std::vector<glm::vec4> xs;

@@ -1,0 +1,45 @@
+// cubes.frag: an endless grid of cubes from one cube, by domain repetition.
+// opRepeat returns each point's cell id; the colour, the size and the spin of
+// every cube come from a hash of it. Drag with the left mouse button to move
+// the sun.
+#define RM_SHADOWS 2
+#define RM_FOG 0.07
+#define RM_MAX_STEPS 200
+#define RM_SCENE_BACKGROUND
+#include <rm/sdf.glsl>
+#include <rm/transforms.glsl>
+#include <rm/texture.glsl>
+#include <rm/camera.glsl>
+#include <rm/render.glsl>
+
+const vec3 kPeriod = vec3(1.8);
+
+vec3 background(vec3 rd) { return vec3(0.05, 0.07, 0.12); }
+
+float map(vec3 p) {
+  vec3 cell;
+  vec3 q = opRepeat(p, kPeriod, cell);
+  vec3 h = rmHash3(cell);
+  // Each cube turns about its own axis, so a neighbour's corner can come nearer
+  // than this cell's cube: never step past the border by more than the gap
+  // every cube leaves (half-period 0.9 minus half-diagonal 0.69).
+  mat3 spin = rmRotationAxis(h - 0.5, iTime * (0.3 + h.x));
+  float d = sdRoundBox(opRotate(q, spin), vec3(0.3 + 0.1 * h.y), 0.05);
+  return min(d, opRepeatBorder(q, kPeriod) + 0.2);
+}
+
+RmMaterial material(vec3 p, vec3 n) {
+  vec3 cell = round(p / kPeriod);
+  RmMaterial m = rmMaterial(0.5 + 0.45 * cos(RM_TAU * (rmHash(cell) + vec3(0.0, 0.33, 0.67))));
+  m.specular = 0.5;
+  return m;
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  // The camera drifts through the grid, off the planes between the cells
+  // (rays along those planes would graze cube after cube).
+  vec3 eye = vec3(0.31, 0.92, 0.2) + iTime * vec3(0.3, 0.1, -0.6);
+  RmCamera cam = rmLookAt(eye, eye + vec3(0.4, -0.15, -1.0), 1.0);
+  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
+}

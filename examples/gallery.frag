@@ -1,0 +1,86 @@
+// gallery.frag: nine objects on plinths, three rows of three: primitives
+// (back), transforms (middle) and smooth booleans (front). Three coloured
+// lights circle the room and change colour over time; the first one follows
+// the mouse (drag with the left button).
+// Classic soft shadows: the improved form speckles at the jumps of the
+// nearest-cell field between plinths (docs/shaderlib.md).
+#define RM_SHADOWS 2
+#define RM_AO
+#define RM_LIGHT_COUNT 3
+#define RM_GROUND 0.0
+#include <rm/sdf.glsl>
+#include <rm/ops.glsl>
+#include <rm/transforms.glsl>
+#include <rm/camera.glsl>
+#include <rm/render.glsl>
+
+const float kSpacing = 1.6;
+
+// Object i, centred at the origin, resting 0.55 above its plinth's base.
+float exhibit(int i, vec3 p) {
+  float t = iTime;
+  p = opRotate(p, rmRotationY(0.5 * t));
+  switch (i) {
+    // primitives
+    case 0: return sdOctahedron(p, 0.42);
+    case 1: return sdCappedTorus(p.xzy, vec2(sin(2.4), cos(2.4)), 0.3, 0.08);
+    case 2: return sdRoundCone(p + vec3(0.0, 0.25, 0.0), 0.25, 0.1, 0.5);
+    // transforms: twist (in its bound), polar repetition, onion cut open
+    case 3: {  // twist stretches space: its constant holds within 0.55 of the axis
+      float bound = sdCappedCylinder(p, 0.25, 0.45);
+      if (bound > 0.3) return bound;
+      return sdBox(opTwist(p, 2.0 * sin(t)), vec3(0.15, 0.4, 0.15)) / opTwistLipschitz(2.0, 0.55);
+    }
+    case 4: {
+      float cell;
+      vec2 q = opRepeatPolar(p.xz, 8.0, cell);
+      return sdCapsule(vec3(q.x, p.y, q.y), vec3(0.15, -0.3, 0.0), vec3(0.32, 0.3, 0.0), 0.05);
+    }
+    case 5: return opSubtraction(opOnion(sdSphere(p, 0.38), 0.03), p.y - 0.15 * sin(t));
+    // smooth booleans
+    case 6: return opSmoothUnion(sdSphere(p - vec3(0.0, 0.25 * sin(2.0 * t), 0.0), 0.22), sdBox(p, vec3(0.3, 0.08, 0.3)), 0.15);
+    case 7: return opSmoothIntersection(sdSphere(p, 0.4), sdBox(p, vec3(0.3)), 0.08);
+    default: return opSmoothSubtraction(sdRoundBox(p, vec3(0.32), 0.04), sdSphere(p, 0.33 + 0.05 * sin(t)), 0.05);
+  }
+}
+
+vec3 slot(int i) { return vec3(kSpacing * (float(i % 3) - 1.0), 0.85, kSpacing * (float(i / 3) - 1.0)); }
+
+RmHit scene(vec3 p) {
+  // A plinth under every object, then the object nearest to p's slot only:
+  // objects are far apart, so the nearest cell's object bounds the rest.
+  vec3 cell;
+  vec3 q = opRepeatLimited(p - vec3(0.0, 0.85, 0.0), vec3(kSpacing, 10.0, kSpacing), vec3(-1.0, 0.0, -1.0),
+                           vec3(1.0, 0.0, 1.0), cell);
+  int i = int(cell.x + 1.0) + 3 * int(cell.z + 1.0);
+  RmHit plinth = rmHit(sdRoundBox(q + vec3(0.0, 0.6, 0.0), vec3(0.35, 0.25, 0.35), 0.03), -1.0);
+  return opUnion(plinth, rmHit(exhibit(i, q), float(i)));
+}
+
+float map(vec3 p) { return scene(p).d; }
+
+RmLight light(int i) {
+  float a = 0.4 * iTime + RM_TAU * float(i) / 3.0;
+  vec3 hue = 0.6 + 0.4 * cos(vec3(0.0, 2.1, 4.2) + 0.7 * iTime + 2.1 * float(i));
+  if (i == 0) {  // the key light: near white, following the mouse
+    vec3 toLight = rmMouseLightDirection(iMouse, iResolution.xy, vec3(0.4, 0.8, 0.5));
+    return rmDirectionalLight(toLight, 0.8 * mix(vec3(1.0), hue, 0.25));
+  }
+  return rmPointLight(vec3(3.0 * cos(a), 2.5, 3.0 * sin(a)), 5.0 * hue * hue);
+}
+
+RmMaterial material(vec3 p, vec3 n) {
+  float id = scene(p).id;
+  RmMaterial m = rmMaterial(id < 0.0 ? vec3(0.75) : vec3(0.85));
+  m.specular = 0.5;
+  m.shininess = 48.0;
+  return m;
+}
+
+RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.35)); }
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  RmCamera cam = rmLookAt(vec3(0.0, 4.2, 5.2), vec3(0.0, 0.5, 0.2), 0.8);
+  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
+}

@@ -1,0 +1,47 @@
+// tori.frag: a chain of five linked tori, each turning on its own axis, above
+// a mirror-polished floor. Drag with the left mouse button to move the sun.
+#define RM_SHADOWS 3
+#define RM_AO
+#define RM_BOUNCES 1
+#define RM_GROUND -1.0
+#include <rm/sdf.glsl>
+#include <rm/ops.glsl>
+#include <rm/transforms.glsl>
+#include <rm/camera.glsl>
+#include <rm/render.glsl>
+
+// Torus i of the chain: alternate ones stand upright, so neighbours link.
+RmHit torus(int i, vec3 p) {
+  float x = 1.1 * (float(i) - 2.0);
+  vec3 q = p - vec3(x, 0.15 * sin(iTime + float(i)), 0.0);
+  q = opRotate(q, rmRotationX(i % 2 == 0 ? 0.0 : 1.5708));  // upright or flat
+  q = opRotate(q, rmRotationY(0.4 * iTime * (i % 2 == 0 ? 1.0 : -1.0)));
+  return rmHit(sdTorus(q, vec2(0.6, 0.13)), float(i));
+}
+
+RmHit chain(vec3 p) {
+  RmHit h = torus(0, p);
+  for (int i = 1; i < 5; ++i) h = opUnion(h, torus(i, p));
+  return h;
+}
+
+float map(vec3 p) { return chain(p).d; }
+
+RmMaterial material(vec3 p, vec3 n) {
+  RmMaterial m = rmMaterial(0.55 + 0.4 * cos(vec3(0.0, 2.1, 4.2) + 0.9 * chain(p).id));
+  m.specular = 0.8;
+  m.shininess = 64.0;
+  return m;
+}
+
+RmMaterial groundMaterial(vec3 p) {
+  RmMaterial m = rmMaterial(vec3(0.2, 0.22, 0.25));
+  m.reflectivity = 0.35;
+  return m;
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  RmCamera cam = rmLookAt(rmOrbit(vec3(0.0), 5.2, 0.25 * sin(0.2 * iTime), 0.35), vec3(0.0, -0.2, 0.0), 0.8);
+  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
+}
