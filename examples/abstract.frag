@@ -5,6 +5,7 @@
 #define RM_SHADOWS 2
 #define RM_AO
 #define RM_GROUND -1.2
+#define RM_BOUNDING_SPHERE vec4(0.0, 0.1, 0.0, 1.9)  // the whole sculpture
 #include <rm/sdf.glsl>
 #include <rm/ops.glsl>
 #include <rm/transforms.glsl>

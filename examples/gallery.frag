@@ -8,6 +8,7 @@
 #define RM_AO
 #define RM_LIGHT_COUNT 3
 #define RM_GROUND 0.0
+#define RM_BOUNDING_SPHERE vec4(0.0, 0.8, 0.0, 3.2)  // all nine plinths
 #include <rm/sdf.glsl>
 #include <rm/ops.glsl>
 #include <rm/transforms.glsl>

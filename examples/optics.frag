@@ -8,6 +8,7 @@
 #define RM_AO
 #define RM_BOUNCES 6
 #define RM_GROUND 0.0
+#define RM_BOUNDING_SPHERE vec4(0.7, 1.0, -0.3, 2.6)  // spectacles, phone and mirror
 #include <rm/sdf.glsl>
 #include <rm/ops.glsl>
 #include <rm/transforms.glsl>

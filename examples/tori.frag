@@ -4,6 +4,7 @@
 #define RM_AO
 #define RM_BOUNCES 1
 #define RM_GROUND -1.0
+#define RM_BOUNDING_SPHERE vec4(0.0, 0.0, 0.0, 3.2)  // the chain fits inside
 #include <rm/sdf.glsl>
 #include <rm/ops.glsl>
 #include <rm/transforms.glsl>

@@ -20,6 +20,9 @@
 //   RM_FOG d       exponential fog of density d
 //   RM_GROUND h    an analytic ground plane y = h, kept out of map() (the march
 //                  meets it exactly; it casts no shadow and gives no AO)
+//   RM_BOUNDING_SPHERE vec4(centre, radius): all of map()'s surface lies
+//                  inside; rays skip straight to it, miss it for free, and
+//                  shadow rays stop where they leave it
 // Secondary rays are spent only where the material asks for them: shadow rays
 // for lit sides, reflection rays for reflectivity > 0, refraction for transparency > 0.
 #ifndef RM_RENDER_GLSL
@@ -85,6 +88,11 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
     if (dot(n, toLight) > 0.0) {  // the dark side needs no shadow ray
       vec3 from = p + n * offset;
       float reach = min(rmLightDistance(l, p), RM_MAX_DISTANCE);
+#ifdef RM_BOUNDING_SPHERE
+      // Nothing outside the bounds can cast a shadow: stop where the ray leaves them.
+      vec2 span = rmRaySphere(from, toLight, RM_BOUNDING_SPHERE.xyz, RM_BOUNDING_SPHERE.w);
+      reach = span.x > span.y ? 0.0 : min(reach, max(span.y, 0.0));
+#endif
 #if RM_SHADOWS == 1
       visible = rmHardShadow(from, toLight, offset, reach);
 #elif RM_SHADOWS == 2
@@ -106,6 +114,9 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   s.cone = cone;
 #ifdef RM_GROUND
   s.groundHeight = RM_GROUND;
+#endif
+#ifdef RM_BOUNDING_SPHERE
+  s.boundSphere = RM_BOUNDING_SPHERE;
 #endif
   vec3 primary = rd;
   vec3 color = vec3(0.0);
