@@ -5,7 +5,8 @@ driven by xdotool. Run as: xvfb-run -a python3 window_test.py RAYMARCHING
 Checks: the window opens; a mouse drag changes iMouse; F12 writes a PNG whose
 pixels match `render` of the same scene, time and mouse; an edit saved by
 rename shows up; a broken edit keeps the last good frame and reports
-file:line; the fix reloads; Q quits with status 0.
+file:line; the fix reloads; Q quits with status 0. A second window shows the
+image a scene names with #pragma channel0 when no --channel0 is given.
 """
 import os
 import re
@@ -168,9 +169,42 @@ def main():
     check("Q quits with status 0", status == 0, status)
 
 
+def scene_default_channel():
+    """A scene's `#pragma channel0 "FILE"` fills iChannel0 in the window."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-channel-")
+    subprocess.run(["oiiotool", "--pattern", "constant:color=0.2,0.6,0.4", "4x4", "3", "-d", "uint8",
+                    "-o", os.path.join(work, "tex.png")], check=True)
+    scene = os.path.join(work, "textured.frag")
+    with open(scene, "w") as f:
+        f.write('#pragma channel0 "tex.png"\n'
+                "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }\n")
+    out_path = os.path.join(work, "stdout.txt")
+    proc = subprocess.Popen([BINARY, scene, "--size", "64x64", "--shot-dir", work, "-v"],
+                            stdout=open(out_path, "w"), stderr=subprocess.DEVNULL, cwd=work)
+    window = wait_for(lambda: xdotool("search", "--name", "textured.frag"))
+    if not window:
+        proc.kill()
+        check("window shows the scene's default channel", False, "no window")
+        return
+    window = window.splitlines()[0]
+    time.sleep(0.5)
+    xdotool("key", "--window", window, "F12")
+    line = wait_for(lambda: [l for l in open(out_path).read().splitlines() if l.startswith("screenshot: ")])
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+    stats = subprocess.run(["oiiotool", "--stats", line[0][len("screenshot: "):]], capture_output=True,
+                           text=True).stdout if line else ""
+    avg = re.search(r"Stats Avg: ([0-9.]+) ([0-9.]+) ([0-9.]+)", stats)
+    scale = 255.0 if "(of 255)" in stats else 1.0
+    colour = [float(v) / scale for v in avg.groups()] if avg else []
+    check("window shows the scene's default channel (#pragma channel0)",
+          len(colour) == 3 and all(abs(a - b) < 0.01 for a, b in zip(colour, [0.2, 0.6, 0.4])), stats)
+
+
 if __name__ == "__main__":
     try:
         main()
+        scene_default_channel()
     finally:
         print(f"{passed} passed, {failed} failed")
     sys.exit(1 if failed or not passed else 0)
