@@ -5,6 +5,17 @@
 
 namespace rm {
 
+InputUse inputs_read(const Program& program) {
+  InputUse use;
+  for (const char* name : {"iTime", "iTimeDelta", "iFrame", "iFrameRate", "iDate", "iChannelTime", "u_time",
+                           "u_delta", "u_frame", "u_date"})
+    use.time = use.time || program.uses(name);
+  use.drag = program.uses("iMouse");
+  use.pointer = program.uses("u_mouse");
+  return use;
+}
+
+
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
   color_ = gl::make_texture(GL_TEXTURE_2D);
   glTextureStorage2D(color_.get(), 1, GL_RGBA32F, width, height);

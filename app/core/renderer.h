@@ -29,6 +29,16 @@ class RenderTarget {
   gl::Framebuffer fbo_;
 };
 
+// What can change a program's picture, read from its active uniforms: a
+// shader that reads no clock draws the same picture until an input it reads
+// changes, so the window need not draw it again.
+struct InputUse {
+  bool time = false;     // iTime, iTimeDelta, iFrame, iFrameRate, iDate, iChannelTime, u_time, u_delta, u_frame, u_date
+  bool drag = false;     // iMouse: changes while the left button is held, and on press and release
+  bool pointer = false;  // u_mouse: follows the pointer, button or not
+};
+InputUse inputs_read(const Program& program);
+
 class Renderer {
  public:
   Renderer();  // needs a current GL context

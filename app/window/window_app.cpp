@@ -71,10 +71,14 @@ class WindowApp {
     }
     load();
     while (!glfwWindowShouldClose(window_) && !quit_) {
-      glfwPollEvents();
+      // A picture that cannot change is drawn once: then sleep until an event,
+      // waking every 20 ms to look at the watcher (a save shows up that fast).
+      if (redraw_needed()) glfwPollEvents();
+      else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
-      frame();
+      if (redraw_needed()) frame();
     }
+    if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
   }
 
@@ -82,8 +86,14 @@ class WindowApp {
     if (button != GLFW_MOUSE_BUTTON_LEFT) return;
     if (action == GLFW_PRESS) mouse_.press(cursor_pixels());
     else if (action == GLFW_RELEASE) mouse_.release();
+    if (use_.drag) dirty_ = true;
   }
-  void on_cursor() { mouse_.move(cursor_pixels()); }
+  void on_cursor() {
+    mouse_.move(cursor_pixels());
+    if (use_.pointer || (use_.drag && mouse_.imouse().z > 0.0f)) dirty_ = true;
+  }
+  // Resizes, uncovered windows: draw again.
+  void on_refresh() { dirty_ = true; }
   void on_key(int key, int action, int mods);
 
  private:
@@ -105,6 +115,8 @@ class WindowApp {
     const Diagnostics& diags = scene_.diagnostics();
     if (!diags.empty()) std::cerr << join(diags);
     errors_ = count_errors(diags);
+    if (const Program* program = scene_.program()) use_ = inputs_read(*program);
+    dirty_ = true;  // a new program, or the stale badge and title
     std::string channel_error;
     if (status == ReloadStatus::Swapped &&
         !channels_.use_scene_defaults(scene_.source().channels, options_.channels, &channel_error))
@@ -148,13 +160,16 @@ class WindowApp {
       screenshot();
     }
     glfwSwapBuffers(window_);
+    ++frames_drawn_;
     if (options_.verbose && presented_generation_ != scene_.generation()) {
       presented_generation_ = scene_.generation();
       std::cerr << "raymarching: presented generation " << presented_generation_ << " at " << steady_ns() << '\n';
     }
+    // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
+    dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
     mouse_.end_frame();
     if (!clock_.paused()) clock_.next_frame();
-    frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;
+    if (delta < 0.25f) frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;  // not across idle waits
     update_title(false);
   }
 
@@ -185,6 +200,7 @@ class WindowApp {
       title += buf;
     }
     if (clock_.paused()) title += " (paused)";
+    if (scene_.program() && !use_.time) title += " (static: drawn on change)";
     glfwSetWindowTitle(window_, title.c_str());
   }
 
@@ -227,6 +243,10 @@ class WindowApp {
     glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
   }
 
+  // Draw this iteration? Always while the shader reads a running clock;
+  // otherwise only after something it reads changed (or a screenshot is due).
+  bool redraw_needed() const { return dirty_ || shot_requested_ || (use_.time && !clock_.paused()); }
+
   const WindowOptions& options_;
   GLFWwindow* window_;
   Scene scene_;
@@ -240,6 +260,9 @@ class WindowApp {
   int presented_generation_ = -1;
   bool shot_requested_ = false;
   bool quit_ = false;
+  InputUse use_;       // what the running program reads
+  long frames_drawn_ = 0;
+  bool dirty_ = true;  // something it reads changed since the last frame
   double frame_ms_ = 16.7;
   std::chrono::steady_clock::time_point title_updated_{};
   int windowed_[4] = {0, 0, 800, 450};
@@ -251,9 +274,9 @@ void WindowApp::on_key(int key, int action, int) {
   switch (key) {
     case GLFW_KEY_F12: if (press) shot_requested_ = true; break;
     case GLFW_KEY_SPACE: if (press) clock_.set_paused(!clock_.paused()); update_title(true); break;
-    case GLFW_KEY_R: if (press) clock_.restart(); break;
-    case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); break;
-    case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); break;
+    case GLFW_KEY_R: if (press) clock_.restart(); dirty_ = true; break;
+    case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); dirty_ = true; break;
+    case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: if (press) quit_ = true; break;
     case GLFW_KEY_F1: if (press) std::cout << window_keys_help() << std::flush; break;
@@ -290,6 +313,8 @@ int run_window(const WindowOptions& options) {
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) { app_of(w)->on_mouse_button(button, action); });
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { app_of(w)->on_cursor(); });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) { app_of(w)->on_key(key, action, mods); });
+    glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { app_of(w)->on_refresh(); });
+    glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w)->on_refresh(); });
     status = app.run();
   }
   glfwDestroyWindow(window);

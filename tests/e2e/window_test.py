@@ -7,6 +7,9 @@ pixels match `render` of the same scene, time and mouse; an edit saved by
 rename shows up; a broken edit keeps the last good frame and reports
 file:line; the fix reloads; Q quits with status 0. A second window shows the
 image a scene names with #pragma channel0 when no --channel0 is given.
+Idle: a shader that reads no clock is drawn once and then only on input it
+reads; left alone for 4 s it uses under a tenth of the CPU time of an
+animated one, and so does an animated one while paused.
 """
 import os
 import re
@@ -201,10 +204,73 @@ def scene_default_channel():
           len(colour) == 3 and all(abs(a - b) < 0.01 for a, b in zip(colour, [0.2, 0.6, 0.4])), stats)
 
 
+# Costly enough per frame that drawing without pause shows in CPU time.
+STATIC = ("void mainImage(out vec4 c, in vec2 f) {\n  float v = 0.0;\n"
+          "  for (int i = 0; i < 200; i++) v += sin(f.x * 0.01 + float(i));\n"
+          "  c = vec4(f / iResolution.xy, fract(v), 1.0);\n}\n")
+ANIMATED = STATIC.replace("float(i));", "float(i) + iTime);")
+DRAGGABLE = STATIC.replace("fract(v)", "fract(v + iMouse.x)")
+
+
+def cpu_seconds(pid):
+    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime, all threads
+
+
+def idle_session(source, name, action=None):
+    """Opens `source`, lets it settle, measures CPU time over 4 s (after
+    `action`, if any), drags the mouse, quits. Returns (cpu s, frames drawn)."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-idle-")
+    scene = os.path.join(work, name)
+    with open(scene, "w") as f:
+        f.write(source)
+    err_path = os.path.join(work, "stderr.txt")
+    proc = subprocess.Popen([BINARY, scene, "--size", "320x180", "-v"], stdout=subprocess.DEVNULL,
+                            stderr=open(err_path, "w"), cwd=work)
+    window = wait_for(lambda: xdotool("search", "--name", name))
+    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
+        proc.kill()
+        return None, None
+    window = window.splitlines()[0]
+    if action:
+        action(window)
+    time.sleep(1.0)
+    start = cpu_seconds(proc.pid)
+    time.sleep(4.0)
+    cpu = cpu_seconds(proc.pid) - start
+    xdotool("mousemove", "--window", window, 50, 50)
+    xdotool("mousedown", 1)
+    for x in range(60, 200, 20):
+        xdotool("mousemove", "--window", window, x, 80)
+        time.sleep(0.05)
+    xdotool("mouseup", 1)
+    time.sleep(0.3)
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+    drawn = re.search(r"drew (\d+) frames", open(err_path).read())
+    return cpu, int(drawn.group(1)) if drawn else None
+
+
+def idle_costs_nothing():
+    animated, _ = idle_session(ANIMATED, "animated.frag")
+    static, static_frames = idle_session(STATIC, "static.frag")
+    paused, _ = idle_session(ANIMATED, "paused.frag", lambda w: xdotool("key", "--window", w, "space"))
+    _, drag_frames = idle_session(DRAGGABLE, "draggable.frag")
+    detail = f"CPU over 4 s: animated {animated}, static {static}, paused {paused}"
+    print(f"     {detail}; frames drawn: static {static_frames}, static reading iMouse {drag_frames}")
+    check("an idle static shader uses under a tenth of an animated one's CPU",
+          None not in (animated, static) and static < animated / 10, detail)
+    check("pausing time stops re-rendering", None not in (animated, paused) and paused < animated / 10, detail)
+    check("a static shader is redrawn on a drag only when it reads iMouse",
+          None not in (static_frames, drag_frames) and static_frames <= 3 and drag_frames > static_frames + 2,
+          f"frames drawn: {static_frames} vs {drag_frames}")
+
+
 if __name__ == "__main__":
     try:
         main()
         scene_default_channel()
+        idle_costs_nothing()
     finally:
         print(f"{passed} passed, {failed} failed")
     sys.exit(1 if failed or not passed else 0)
