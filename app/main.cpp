@@ -1,7 +1,7 @@
 // raymarching: a live shader playground for ray-marched SDF scenes.
 //   raymarching [SCENE]            open a window (default scene without SCENE)
 //   raymarching render SCENE -o F  render headless through EGL
-//   raymarching check SCENE        preprocess and validate only
+//   raymarching check SCENE [-E]   preprocess and validate only (-E: print the result)
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -177,6 +177,8 @@ int main(int argc, char** argv) {
   Common check_common;
   std::string check_scene;
   check->add_option("scene", check_scene, "Shader to check")->required()->type_name("SCENE");
+  bool expand = false;
+  check->add_flag("-E,--expand", expand, "Print what the compiler sees: the source after the preprocessor");
   check_common.add_to(*check);
 
   try {
@@ -190,7 +192,7 @@ int main(int argc, char** argv) {
   try {
     if (*check) {
       require_readable_file(check_scene);
-      return rm::check_command(check_scene, check_common.source());
+      return rm::check_command(check_scene, check_common.source(), expand);
     }
     if (*render) {
       require_readable_file(render_scene);

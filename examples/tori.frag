@@ -2,7 +2,7 @@
 // a mirror-polished floor. Drag with the left mouse button to move the sun.
 #define RM_SHADOWS 3
 #define RM_AO
-#define RM_BOUNCES 1
+#define RM_REFLECTIONS 1
 #define RM_GROUND -1.0
 #define RM_BOUNDING_SPHERE vec4(0.0, 0.0, 0.0, 3.2)  // the chain fits inside
 #include <rm/sdf.glsl>

@@ -74,6 +74,21 @@ Diagnostics validate(const Source& source) {
   return map_log(shader.getInfoLog(), source, LogFormat::Glslang);
 }
 
+std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags) {
+  ensure_glslang_initialized();
+  glslang::TShader shader(EShLangFragment);
+  const char* text = source.text.c_str();
+  const int length = static_cast<int>(source.text.size());
+  shader.setStringsWithLengths(&text, &length, 1);
+  glslang::TShader::ForbidIncluder includer;  // includes are already expanded
+  std::string out;
+  if (!shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, EShMsgDefault, &out, includer)) {
+    *diags = map_log(shader.getInfoLog(), source, LogFormat::Glslang);
+    return std::nullopt;
+  }
+  return out;
+}
+
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format) {
   // glslang: "ERROR: 0:12: 'foo' : undeclared identifier"
   static const std::regex glslang_re(R"(^(ERROR|WARNING): \d+:(\d+): (.*)$)");

@@ -9,6 +9,7 @@
 
 #include "core/capture.h"
 #include "core/channels.h"
+#include "core/check.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "headless/egl_context.h"
@@ -45,11 +46,18 @@ std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& 
   return pattern.parent_path() / buf;
 }
 
-int check_command(const std::filesystem::path& scene, const SourceOptions& options) {
+int check_command(const std::filesystem::path& scene, const SourceOptions& options, bool expand) {
   Diagnostics diags;
-  check_scene(scene, options, &diags);
+  const Source source = check_scene(scene, options, &diags);
   print_diagnostics(diags);
-  return count_errors(diags) ? kExitShaderError : kExitOk;
+  if (count_errors(diags)) return kExitShaderError;
+  if (expand) {
+    auto text = expand_preprocessor(source, &diags);
+    print_diagnostics(diags);
+    if (!text) return kExitShaderError;
+    std::cout << *text;
+  }
+  return kExitOk;
 }
 
 int render_command(const RenderRequest& req) {

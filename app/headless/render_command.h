@@ -27,7 +27,8 @@ struct RenderRequest {
 };
 
 int render_command(const RenderRequest& request);
-int check_command(const std::filesystem::path& scene, const SourceOptions& options);
+// `expand`: print what the compiler sees (glslang's preprocessed text) on stdout.
+int check_command(const std::filesystem::path& scene, const SourceOptions& options, bool expand = false);
 
 // Expands a printf-style frame counter ("frame_%04d.png"); nullopt if the
 // pattern has no single %d conversion.

@@ -1,9 +1,10 @@
 // rm/optics.glsl through rm/render.glsl: a glass sphere (Snell refraction,
 // Schlick Fresnel, Beer absorption, total internal reflection), a mirror torus
-// and a checkered ground, with 5 bounces.
+// and a checkered ground, with up to 2 reflections and 5 refraction segments.
 #define RM_SHADOWS 3
 #define RM_AO
-#define RM_BOUNCES 5
+#define RM_REFLECTIONS 2
+#define RM_REFRACTION 5
 #define RM_GROUND -0.5
 #include "scene.glsl"
 #include <rm/camera.glsl>

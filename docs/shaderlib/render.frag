@@ -1,6 +1,7 @@
 // rm/render.glsl: the same scene compiled with more effects each time:
 // direct light only; + soft shadows (-D RM_SHADOWS=3); + ambient occlusion
-// (-D RM_AO); + 4 bounces for the mirror and the glass, and fog.
+// (-D RM_AO); + the mirror (-D RM_REFLECTIONS=2), the glass
+// (-D RM_REFRACTION=4) and fog (-D RM_FOG=0.08).
 #define RM_GROUND -0.5
 #include "scene.glsl"
 #include <rm/camera.glsl>

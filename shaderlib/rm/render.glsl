@@ -16,7 +16,10 @@
 //   RM_SHADOWS 1 hard, 2 soft (k h / t), 3 soft (iq's improved form)
 //   RM_SHADOW_SHARPNESS k of the soft shadows (default 16)
 //   RM_AO          ambient occlusion
-//   RM_BOUNCES n   reflection and refraction rays per pixel (default 0)
+//   RM_REFLECTIONS n  mirror bounces per pixel, for reflectivity > 0
+//   RM_REFRACTION n   segments through transparent solids per pixel (entering,
+//                  leaving, internal reflections), with Fresnel, total
+//                  internal reflection and Beer absorption; transparency > 0
 //   RM_FOG d       exponential fog of density d
 //   RM_GROUND h    an analytic ground plane y = h, kept out of map() (the march
 //                  meets it exactly; it casts no shadow and gives no AO)
@@ -24,7 +27,8 @@
 //                  inside; rays skip straight to it, miss it for free, and
 //                  shadow rays stop where they leave it
 // Secondary rays are spent only where the material asks for them: shadow rays
-// for lit sides, reflection rays for reflectivity > 0, refraction for transparency > 0.
+// for lit sides, reflection rays for reflectivity > 0, refraction for
+// transparency > 0. Without RM_REFRACTION a transparent material is opaque.
 #ifndef RM_RENDER_GLSL
 #define RM_RENDER_GLSL
 
@@ -33,9 +37,12 @@
 #include <rm/normals.glsl>
 #include <rm/optics.glsl>
 
-// Reflection and refraction rays followed per pixel.
-#ifndef RM_BOUNCES
-#define RM_BOUNCES 0
+// Mirror bounces and refraction segments followed per pixel.
+#ifndef RM_REFLECTIONS
+#define RM_REFLECTIONS 0
+#endif
+#ifndef RM_REFRACTION
+#define RM_REFRACTION 0
 #endif
 // k of the soft shadows: larger is sharper.
 #ifndef RM_SHADOW_SHARPNESS
@@ -108,11 +115,13 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
 }
 
 // Colour (linear) seen along the ray ro + t rd; `cone` is the pixel cone
-// (rmPixelCone) that sets the hit threshold.
+// (rmPixelCone) that sets the hit threshold. Without RM_REFLECTIONS and
+// RM_REFRACTION this is one march and one shading: no loop, no secondary rays.
 vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   RmMarchSettings s = rmMarchSettings();
   s.cone = cone;
 #ifdef RM_GROUND
+  s.ground = true;
   s.groundHeight = RM_GROUND;
 #endif
 #ifdef RM_BOUNDING_SPHERE
@@ -122,12 +131,16 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   vec3 color = vec3(0.0);
   vec3 throughput = vec3(1.0);  // what is left of the pixel's light after the bounces so far
   float firstT = RM_MAX_DISTANCE;
+#if RM_REFRACTION > 0
   bool inside = false;          // travelling through a transparent solid
   RmMaterial medium;            // that solid's material
-  for (int bounce = 0; bounce <= RM_BOUNCES; ++bounce) {
+#endif
+  for (int bounce = 0; bounce <= RM_REFLECTIONS + RM_REFRACTION; ++bounce) {
+#if RM_REFRACTION > 0
     s.side = inside ? -1.0 : 1.0;
 #ifdef RM_GROUND
     s.ground = !inside;
+#endif
 #endif
     RmMarch m = rmMarch(ro, rd, s);
     if (m.outcome != RM_HIT) {
@@ -139,6 +152,7 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
     float offset = rmSurfaceOffset(p, m.tolerance);
     if (bounce == 0) firstT = m.t;
 
+#if RM_REFRACTION > 0
     if (inside) {
       // Leaving the solid: absorb along the way, then refract out or reflect back in.
       throughput *= rmBeer(medium.absorption, m.t);
@@ -148,19 +162,28 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
       ro = p + (tir ? -n : n) * offset;
       continue;
     }
+#endif
 
 #ifdef RM_GROUND
     RmMaterial mat = m.ground ? groundMaterial(p) : material(p, n);
 #else
     RmMaterial mat = material(p, n);
 #endif
+    float reflected = 0.0, refracted = 0.0;
+#if RM_REFLECTIONS > 0
+    reflected = mat.reflectivity;
+#endif
+#if RM_REFRACTION > 0
     float fresnel = mat.transparency > 0.0 ? rmFresnel(rd, n, mat.ior) : 0.0;
-    float reflected = clamp(mat.reflectivity + mat.transparency * fresnel, 0.0, 1.0);
-    float refracted = mat.transparency * (1.0 - fresnel);
+    reflected = clamp(reflected + mat.transparency * fresnel, 0.0, 1.0);
+    refracted = mat.transparency * (1.0 - fresnel);
     float diffuse = max(1.0 - mat.reflectivity - mat.transparency, 0.0);
+#else
+    float diffuse = max(1.0 - mat.reflectivity, 0.0);  // without refraction, glass is opaque
+#endif
     color += throughput * (mat.emission + diffuse * rmDirectLight(p, n, -rd, mat, offset));
 
-#if RM_BOUNCES > 0
+#if RM_REFRACTION > 0
     if (refracted > 0.0) {
       // Follow the refracted ray; the reflected share sees the sky.
       color += throughput * reflected * rmBackground(reflect(rd, n));
@@ -170,16 +193,18 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
       inside = !tir;
       medium = mat;
       ro = p + (inside ? -n : n) * offset;
-    } else if (reflected > 0.0) {
+      continue;
+    }
+#endif
+#if RM_REFLECTIONS > 0
+    if (reflected > 0.0) {  // only mirrors spend a reflection ray
       throughput *= reflected;
       rd = reflect(rd, n);
       ro = p + n * offset;
-    } else {
-      break;
+      continue;
     }
-#else
-    break;
 #endif
+    break;
   }
 #ifdef RM_FOG
   color = rmFog(color, rmBackground(primary), firstT, RM_FOG);

@@ -53,6 +53,19 @@ TEST_F(Cli, DefinesAndIncludeDirsWorkAsInACompiler) {
   EXPECT_EQ(run("check " + scene + " -DLEVEL=2.0").status, 1);              // include not found
 }
 
+// `check -E` prints what the compiler sees, as a compiler's -E does: macros
+// (including -D ones) expanded, branches not taken gone.
+TEST_F(Cli, CheckExpandPrintsThePreprocessedSource) {
+  write_file(dir_ / "e.frag", "#ifdef FANCY\nfloat fancy_marker;\n#endif\n"
+                              "void mainImage(out vec4 c, in vec2 f) { c = vec4(LEVEL); }\n");
+  const std::string out = (dir_ / "expanded.glsl").string();
+  const std::string cmd = std::string(RM_BINARY) + " check -E " + (dir_ / "e.frag").string() + " -DLEVEL=2.5 > " + out;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string text = test::read_file(out);
+  EXPECT_NE(text.find("c = vec4(2.5)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("fancy_marker"), std::string::npos) << text;
+}
+
 TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
   const std::string g = good();
   const std::string out = (dir_ / "o.png").string();
