@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "core/check.h"
+#include "gpu/egl_fixture.h"
+#include "gpu/probe.h"
 #include "core/data_paths.h"
 #include "core/source.h"
 #include "support.h"
@@ -92,6 +94,76 @@ INSTANTIATE_TEST_SUITE_P(
                            {"improved soft shadows", "ambient occlusion", "reflection", "refraction", "Fresnel",
                             "absorption", "fog"}}),
     [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+
+// Run-time selection: map() evaluations per pixel, counted by the scene, for
+// rays at a mirror sphere (left) and a matte one (right) over a matte floor,
+// rendered with and without RM_REFLECTIONS / RM_REFRACTION / shadows. A pixel
+// pays for a secondary ray only when its material or its lighting needs one.
+class RunTime : public EglTest {
+ protected:
+  // Rays from (0, 0.5, 6) through 64 points around `aim` (a 8 x 8 grid, 0.02 apart).
+  static std::vector<glm::vec4> rays_at(glm::vec3 aim) {
+    std::vector<glm::vec4> rays;
+    for (int i = 0; i < 64; ++i)
+      rays.emplace_back(aim + glm::vec3(0.02f * (i % 8), 0.02f * (i / 8), 0.0f) - glm::vec3(0.0f, 0.5f, 6.0f), 0.0f);
+    return rays;
+  }
+
+  static std::vector<float> evaluations(const std::string& defines, const std::vector<glm::vec4>& rays) {
+    const std::string prelude = defines + R"(
+uniform vec4 iMouse;
+uniform vec3 iResolution;
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+int evaluations = 0;
+float map(vec3 p) {
+  ++evaluations;
+  return min(min(sdSphere(p - vec3(-1.2, 0.0, 0.0), 1.0), sdSphere(p - vec3(1.2, 0.0, 0.0), 1.0)), p.y + 1.0);
+}
+RmMaterial material(vec3 p, vec3 n) {
+  RmMaterial m = rmMaterial(vec3(0.8));
+  if (length(p - vec3(-1.2, 0.0, 0.0)) < 1.01) m.reflectivity = 0.9;  // the left sphere is a mirror
+  if (length(p - vec3(1.2, 0.0, 0.0)) < 1.01) m.transparency = 0.0;   // the right one is matte
+  return m;
+}
+float count(vec3 rd) {
+  rmRender(vec3(0.0, 0.5, 6.0), normalize(rd), 1e-3);
+  return float(evaluations);
+}
+)";
+    std::string error;
+    auto got = probe(prelude, "vec4(count(P.xyz))", rays, &error);
+    EXPECT_TRUE(got) << error;
+    std::vector<float> counts;
+    for (const auto& v : got.value_or(std::vector<glm::vec4>(rays.size()))) counts.push_back(v.x);
+    return counts;
+  }
+};
+
+TEST_F(RunTime, OnlyMirrorPixelsPayForReflectionRays) {
+  auto rays = rays_at({-1.3f, 0.2f, 0.9f});                   // the mirror's face
+  const auto matte = rays_at({1.1f, 0.2f, 0.9f});              // the matte sphere's face
+  rays.insert(rays.end(), matte.begin(), matte.end());
+  const auto plain = evaluations("", rays);
+  const auto reflective = evaluations("#define RM_REFLECTIONS 2\n#define RM_REFRACTION 2\n", rays);
+  ASSERT_EQ(plain.size(), 128u);
+  ASSERT_EQ(reflective.size(), 128u);
+  for (size_t i = 0; i < 64; ++i) EXPECT_GT(reflective[i], plain[i]) << "mirror pixel " << i << " traced no reflection";
+  for (size_t i = 64; i < 128; ++i) EXPECT_EQ(reflective[i], plain[i]) << "matte pixel " << i << " paid for a secondary ray";
+}
+
+// The default sun (no iMouse) shines from above, in front and to the right.
+// Its shadow rays start only where a surface faces it.
+TEST_F(RunTime, ShadowRaysOnlyWhereTheSurfaceFacesTheLight) {
+  auto rays = rays_at({1.1f, 0.55f, 0.6f});                    // the matte sphere's top: lit
+  const auto dark = rays_at({1.0f, -0.8f, 0.4f});               // its underside: facing away
+  rays.insert(rays.end(), dark.begin(), dark.end());
+  const auto plain = evaluations("", rays);
+  const auto shadowed = evaluations("#define RM_SHADOWS 1\n", rays);
+  ASSERT_EQ(shadowed.size(), 128u);
+  for (size_t i = 0; i < 64; ++i) EXPECT_GT(shadowed[i], plain[i]) << "lit pixel " << i << " traced no shadow ray";
+  for (size_t i = 64; i < 128; ++i) EXPECT_EQ(shadowed[i], plain[i]) << "dark pixel " << i << " traced a shadow ray";
+}
 
 }  // namespace
 }  // namespace rm::test
