@@ -6,8 +6,8 @@
 #pragma channel0 "textures/phone_screen.png"
 #define RM_SHADOWS 2
 #define RM_AO
-#define RM_REFLECTIONS 2
-#define RM_REFRACTION 6
+#define RM_REFLECTIONS 1
+#define RM_REFRACTION 5
 #define RM_GROUND 0.0
 #define RM_BOUNDING_SPHERE vec4(0.7, 1.0, -0.3, 2.6)  // spectacles, phone and mirror
 #include <rm/sdf.glsl>
