@@ -6,7 +6,8 @@
 //   rmBlinnPhong, rmShade, rmHardShadow, rmSoftShadow, rmSoftShadowImproved,
 //   rmAmbientOcclusion, rmFog, rmToneMapReinhard, rmToneMapACES, rmGamma,
 //   rmLinearToSrgb, rmMouseLightDirection.
-// Needs: the scene's `float map(vec3 p)`; rm/common.glsl (included).
+// Needs: the scene's `float map(vec3 p)`; rm/common.glsl and rm/map.glsl
+//   (included; map() calls go through rmMap, which RM_COUNT counts).
 // Knobs: RM_SHADOW_STEPS (shadow ray steps), RM_AO_SAMPLES (AO taps).
 // Every function returns finite values for any input, including t = 0, h = 0
 // and distances that grow faster than the previous step allowed.
@@ -14,6 +15,7 @@
 #define RM_LIGHTING_GLSL
 
 #include <rm/common.glsl>
+#include <rm/map.glsl>
 
 // Most map() evaluations per shadow ray.
 #ifndef RM_SHADOW_STEPS
@@ -24,7 +26,6 @@
 #define RM_AO_SAMPLES 5
 #endif
 
-float map(vec3 p);
 
 // How a surface looks. Colours are linear RGB.
 struct RmMaterial {
@@ -116,7 +117,7 @@ vec3 rmShade(vec3 p, vec3 n, vec3 v, RmMaterial m, RmLight light, float shadow) 
 float rmHardShadow(vec3 ro, vec3 rd, float tMin, float tMax) {
   float t = max(tMin, 1e-6);
   for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
-    float h = map(ro + rd * t);
+    float h = rmMap(ro + rd * t);
     if (h < 1e-4 * t) return 0.0;
     t += h;
   }
@@ -129,7 +130,7 @@ float rmSoftShadow(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   float shade = 1.0;
   float t = max(tMin, 1e-6);  // t = 0 would make k h / t a 0/0
   for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
-    float h = map(ro + rd * t);
+    float h = rmMap(ro + rd * t);
     shade = min(shade, k * h / t);
     if (shade < 1e-3) break;
     t += clamp(h, 1e-3, 0.5);  // small steps in the penumbra, bounded ones in the open
@@ -145,7 +146,7 @@ float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   float stepLength = 0.0;
   float t = max(tMin, 1e-6);
   for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
-    float h = map(ro + rd * t);
+    float h = rmMap(ro + rd * t);
     if (h <= 0.0) return 0.0;
     // The occluder is nearest where the spheres of this and the last step meet:
     // y back along the ray, d off it. iq writes y = h^2 / (2 previousH), which
@@ -169,13 +170,13 @@ float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
 // the hemisphere, 1 = open. Distances are measured from the surface (map(p) is
 // subtracted), so a hit point found slightly off the surface does not darken.
 float rmAmbientOcclusion(vec3 p, vec3 n) {
-  float base = map(p);
+  float base = rmMap(p);
   float blocked = 0.0;  // weighted share of each tap's distance that is blocked
   float total = 0.0;
   float weight = 1.0;
   for (int i = 0; i < RM_AO_SAMPLES; ++i) {
     float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
-    blocked += weight * clamp((h - (map(p + n * h) - base)) / h, 0.0, 1.0);
+    blocked += weight * clamp((h - (rmMap(p + n * h) - base)) / h, 0.0, 1.0);
     total += weight;
     weight *= 0.8;  // near taps matter most
   }

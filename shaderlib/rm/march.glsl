@@ -4,8 +4,8 @@
 // Provides: RM_HIT, RM_MISS, RM_OUT_OF_STEPS, RmMarchSettings, RmMarch,
 //   rmMarchSettings, rmHitThreshold, rmRaySphere, rmRayBox, rmRayGround,
 //   rmMarch, rmSurfaceOffset.
-// Needs: the scene's `float map(vec3 p)` (declared here, defined by the scene);
-//   rm/common.glsl (included);
+// Needs: the scene's `float map(vec3 p)` (defined by the scene; map() calls go
+//   through rmMap, which RM_COUNT counts); rm/common.glsl and rm/map.glsl (included);
 //   map must be a bound (Lipschitz <= 1) for the march to be safe.
 // Knobs (set with #define before the include, or -D on the command line):
 //   RM_MAX_STEPS, RM_MAX_DISTANCE, RM_HIT_CONE, RM_HIT_EPSILON, RM_OMEGA.
@@ -13,6 +13,7 @@
 #define RM_MARCH_GLSL
 
 #include <rm/common.glsl>
+#include <rm/map.glsl>
 
 // Most map() evaluations per ray.
 #ifndef RM_MAX_STEPS
@@ -37,7 +38,6 @@
 #define RM_OMEGA 1.0
 #endif
 
-float map(vec3 p);
 
 // Outcomes of a march.
 const int RM_HIT = 0;           // map() fell below the threshold
@@ -147,7 +147,7 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
       miss.steps = i;
       return miss;
     }
-    float d = s.side * map(ro + rd * t);
+    float d = s.side * rmMap(ro + rd * t);
     if (omega > 1.0 && stepLength > 0.0 && d + previousD < stepLength) {
       // Overshot: the plain step (previousD) was safe, the stretched one may not be.
       t -= stepLength - previousD;

@@ -1,6 +1,7 @@
 // rm/normals.glsl: surface normals of the scene's map() from its gradient.
 // Provides: rmNormalEpsilon, rmNormalTetrahedron, rmNormalCentral, rmNormal.
-// Needs: the scene's `float map(vec3 p)`; rm/common.glsl (included).
+// Needs: the scene's `float map(vec3 p)`; rm/common.glsl and rm/map.glsl
+//   (included; map() calls go through rmMap, which RM_COUNT counts).
 // Knobs: RM_NORMAL_EPSILON (smallest step), RM_NORMAL_TAPS (4 or 6).
 // Normals are unit length; where the gradient vanishes (a sphere's centre, a
 // medial point) they fall back to +y instead of NaN.
@@ -8,6 +9,7 @@
 #define RM_NORMALS_GLSL
 
 #include <rm/common.glsl>
+#include <rm/map.glsl>
 
 // Smallest finite-difference step.
 #ifndef RM_NORMAL_EPSILON
@@ -18,7 +20,6 @@
 #define RM_NORMAL_TAPS 4
 #endif
 
-float map(vec3 p);
 
 // Finite-difference step at p for a hit found within `tolerance`: it grows with
 // the pixel footprint and stays far above float spacing at |p| (64 ulps).
@@ -29,16 +30,16 @@ float rmNormalEpsilon(vec3 p, float tolerance) {
 // Normal from 4 taps on a tetrahedron of half-size eps (iq's method).
 vec3 rmNormalTetrahedron(vec3 p, float eps) {
   const vec2 k = vec2(1.0, -1.0);
-  vec3 g = k.xyy * map(p + k.xyy * eps) + k.yyx * map(p + k.yyx * eps) +
-           k.yxy * map(p + k.yxy * eps) + k.xxx * map(p + k.xxx * eps);
+  vec3 g = k.xyy * rmMap(p + k.xyy * eps) + k.yyx * rmMap(p + k.yyx * eps) +
+           k.yxy * rmMap(p + k.yxy * eps) + k.xxx * rmMap(p + k.xxx * eps);
   return rmSafeNormalize(g, vec3(0.0, 1.0, 0.0));
 }
 
 // Normal from 6 taps of central differences with step eps.
 vec3 rmNormalCentral(vec3 p, float eps) {
   const vec2 h = vec2(1.0, 0.0);
-  vec3 g = vec3(map(p + h.xyy * eps) - map(p - h.xyy * eps), map(p + h.yxy * eps) - map(p - h.yxy * eps),
-                map(p + h.yyx * eps) - map(p - h.yyx * eps));
+  vec3 g = vec3(rmMap(p + h.xyy * eps) - rmMap(p - h.xyy * eps), rmMap(p + h.yxy * eps) - rmMap(p - h.yxy * eps),
+                rmMap(p + h.yyx * eps) - rmMap(p - h.yyx * eps));
   return rmSafeNormalize(g, vec3(0.0, 1.0, 0.0));
 }
 

@@ -109,7 +109,8 @@ class RunTime : public EglTest {
     return rays;
   }
 
-  static std::vector<float> evaluations(const std::string& defines, const std::vector<glm::vec4>& rays) {
+  static std::vector<float> evaluations(const std::string& defines, const std::vector<glm::vec4>& rays,
+                                        const std::string& result = "vec4(count(P.xyz))") {
     const std::string prelude = defines + R"(
 uniform vec4 iMouse;
 uniform vec3 iResolution;
@@ -132,7 +133,7 @@ float count(vec3 rd) {
 }
 )";
     std::string error;
-    auto got = probe(prelude, "vec4(count(P.xyz))", rays, &error);
+    auto got = probe(prelude, result, rays, &error);
     EXPECT_TRUE(got) << error;
     std::vector<float> counts;
     for (const auto& v : got.value_or(std::vector<glm::vec4>(rays.size()))) counts.push_back(v.x);
@@ -163,6 +164,23 @@ TEST_F(RunTime, ShadowRaysOnlyWhereTheSurfaceFacesTheLight) {
   ASSERT_EQ(shadowed.size(), 128u);
   for (size_t i = 0; i < 64; ++i) EXPECT_GT(shadowed[i], plain[i]) << "lit pixel " << i << " traced no shadow ray";
   for (size_t i = 64; i < 128; ++i) EXPECT_EQ(shadowed[i], plain[i]) << "dark pixel " << i << " traced a shadow ray";
+}
+
+// RM_COUNT's rmEvaluations counts every map() call the library makes: with
+// every effect on, it equals the count the scene keeps inside map() itself.
+TEST_F(RunTime, CountingCoversEveryCall) {
+  auto rays = rays_at({-1.3f, 0.2f, 0.9f});
+  const auto matte = rays_at({1.1f, 0.55f, 0.6f});
+  rays.insert(rays.end(), matte.begin(), matte.end());
+  const std::string all = "#define RM_COUNT\n#define RM_SHADOWS 3\n#define RM_AO\n#define RM_REFLECTIONS 2\n"
+                          "#define RM_REFRACTION 2\n#define RM_NORMAL_TAPS 6\n";
+  const auto library = evaluations(all, rays, "vec4(count(P.xyz) - float(rmEvaluations))");
+  const auto scene = evaluations(all, rays);
+  ASSERT_EQ(library.size(), rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_GT(scene[i], 20.0f) << "ray " << i;
+    EXPECT_EQ(library[i], 0.0f) << "ray " << i << ": the library's count differs from the scene's";
+  }
 }
 
 }  // namespace
