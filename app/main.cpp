@@ -91,10 +91,13 @@ void require_readable_file(const fs::path& path) {
 struct Common {
   std::vector<std::string> includes;
   std::vector<std::string> defines;
+  std::string quality;
 
   void add_to(CLI::App& app) {
     app.add_option("-I", includes, "Add DIR to the #include search path")->type_name("DIR")->allow_extra_args(false);
     app.add_option("-D", defines, "Define macro NAME (as VALUE, default 1) after #version")->type_name("NAME[=VALUE]")->allow_extra_args(false);
+    app.add_option("--quality", quality, "shaderlib preset: the same as -D RM_QUALITY=RM_<NAME>")
+        ->check(CLI::IsMember({"draft", "interactive", "final", "reference"}));
   }
 
   rm::SourceOptions source() const {
@@ -107,6 +110,11 @@ struct Common {
       rm::Define def{d.substr(0, eq), eq == std::string::npos ? "" : d.substr(eq + 1)};
       if (!std::regex_match(def.name, name_re)) throw UsageError{"-D '" + d + "': '" + def.name + "' is not a macro name"};
       out.defines.push_back(def);
+    }
+    if (!quality.empty()) {
+      std::string name = "RM_" + quality;
+      std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+      out.defines.push_back({"RM_QUALITY", name});
     }
     return out;
   }

@@ -40,6 +40,6 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   // (rays along those planes would graze cube after cube).
   vec3 eye = vec3(0.31, 0.92, 0.2) + iTime * vec3(0.3, 0.1, -0.6);
   RmCamera cam = rmLookAt(eye, eye + vec3(0.4, -0.15, -1.0), 1.0);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

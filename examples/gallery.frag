@@ -82,6 +82,6 @@ RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.35)); }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   RmCamera cam = rmLookAt(vec3(0.0, 4.2, 5.2), vec3(0.0, 0.5, 0.2), 0.8);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

@@ -39,6 +39,6 @@ RmMaterial material(vec3 p, vec3 n) {
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   vec3 ahead = eye() + vec3(0.3 * sin(0.3 * iTime), 0.2 * cos(0.25 * iTime), -1.0);
   RmCamera cam = rmLookAt(eye(), ahead, 1.1);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

@@ -88,6 +88,6 @@ RmMaterial groundMaterial(vec3 p) { return rmMaterial(mix(vec3(0.5, 0.45, 0.4), 
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   RmCamera cam = rmLookAt(vec3(-0.6, 1.2, 3.1), vec3(0.3, 0.85, 0.0), 0.7);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

@@ -43,6 +43,6 @@ RmMaterial groundMaterial(vec3 p) {
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   RmCamera cam = rmLookAt(rmOrbit(vec3(0.0), 5.2, 0.25 * sin(0.2 * iTime), 0.35), vec3(0.0, -0.2, 0.0), 0.8);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

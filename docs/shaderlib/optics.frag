@@ -33,6 +33,6 @@ RmMaterial groundMaterial(vec3 p) { return rmMaterial(mix(vec3(0.15), vec3(0.85)
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   RmCamera cam = rmLookAt(vec3(0.0, 1.0, 4.5), vec3(0.0, -0.2, 0.0), 0.9);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

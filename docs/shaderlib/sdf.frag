@@ -58,6 +58,6 @@ RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.45)); }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   RmCamera cam = rmLookAt(vec3(0.6, 5.2, 6.6), vec3(0.6, -0.4, 0.55), 0.75);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

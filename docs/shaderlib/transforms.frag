@@ -66,6 +66,6 @@ RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.5)); }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   RmCamera cam = rmLookAt(vec3(0.0, 1.3, 4.8), vec3(0.0, -0.1, 0.0), 0.55);
-  vec3 color = rmRender(cam.position, rmCameraRay(cam, fragCoord, iResolution), rmPixelCone(cam, iResolution));
+  vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
 }

@@ -16,6 +16,7 @@
 
 #include <rm/common.glsl>
 #include <rm/map.glsl>
+#include <rm/quality.glsl>
 
 // Most map() evaluations per shadow ray.
 #ifndef RM_SHADOW_STEPS

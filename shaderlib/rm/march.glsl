@@ -14,6 +14,7 @@
 
 #include <rm/common.glsl>
 #include <rm/map.glsl>
+#include <rm/quality.glsl>
 
 // Most map() evaluations per ray.
 #ifndef RM_MAX_STEPS

@@ -10,6 +10,7 @@
 
 #include <rm/common.glsl>
 #include <rm/map.glsl>
+#include <rm/quality.glsl>
 
 // Smallest finite-difference step.
 #ifndef RM_NORMAL_EPSILON

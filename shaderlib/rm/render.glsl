@@ -1,8 +1,8 @@
 // rm/render.glsl: the whole picture for a scene that gives only its geometry
 // and its look. It marches the primary ray, shades the hit with every light,
 // and follows reflection and refraction rays in a bounded loop.
-// Provides: rmBackground, rmDirectLight, rmRender, and light() when the scene
-//   defines no lights.
+// Provides: rmBackground, rmDirectLight, rmRender, rmRenderPixel, and light()
+//   when the scene defines no lights.
 // Needs: the scene contract:
 //   float map(vec3 p);                    a bound distance to the scene
 //   RmMaterial material(vec3 p, vec3 n);  the look at hit point p, normal n
@@ -10,7 +10,7 @@
 //   with RM_LIGHT_COUNT: RmLight light(int i) for i < RM_LIGHT_COUNT
 //     (otherwise one white sun that a left-button drag moves, via iMouse);
 //   with RM_SCENE_BACKGROUND: vec3 background(vec3 rd).
-//   Includes rm/march, rm/normals, rm/lighting and rm/optics.
+//   Includes rm/march, rm/normals, rm/lighting, rm/optics and rm/camera.
 // Effects are compiled in only when the scene asks (#define before the include
 // or -D on the command line); asking for nothing gives direct light only:
 //   RM_SHADOWS 1 hard, 2 soft (k h / t), 3 soft (iq's improved form)
@@ -32,6 +32,8 @@
 #ifndef RM_RENDER_GLSL
 #define RM_RENDER_GLSL
 
+#include <rm/quality.glsl>
+#include <rm/camera.glsl>
 #include <rm/lighting.glsl>
 #include <rm/march.glsl>
 #include <rm/normals.glsl>
@@ -47,6 +49,15 @@
 // k of the soft shadows: larger is sharper.
 #ifndef RM_SHADOW_SHARPNESS
 #define RM_SHADOW_SHARPNESS 16.0
+#endif
+// Hit threshold in half-pixel footprints (the pixel cone rmRender is given is
+// scaled by this); 0 leaves only RM_HIT_EPSILON, a fixed absolute threshold.
+#ifndef RM_HIT_PIXELS
+#define RM_HIT_PIXELS 1.0
+#endif
+// Supersampling: rmRenderPixel traces RM_SAMPLES x RM_SAMPLES rays per pixel.
+#ifndef RM_SAMPLES
+#define RM_SAMPLES 1
 #endif
 // Sky light reaching every surface, before AO.
 #ifndef RM_AMBIENT
@@ -119,7 +130,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
 // RM_REFRACTION this is one march and one shading: no loop, no secondary rays.
 vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   RmMarchSettings s = rmMarchSettings();
-  s.cone = cone;
+  s.cone = cone * RM_HIT_PIXELS;
 #ifdef RM_GROUND
   s.ground = true;
   s.groundHeight = RM_GROUND;
@@ -210,6 +221,18 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   color = rmFog(color, rmBackground(primary), firstT, RM_FOG);
 #endif
   return color;
+}
+
+// Colour (linear) of the pixel at fragCoord seen by camera: the average of
+// RM_SAMPLES x RM_SAMPLES rays spread evenly over the pixel.
+vec3 rmRenderPixel(RmCamera camera, vec2 fragCoord, vec3 resolution) {
+  float cone = rmPixelCone(camera, resolution) / float(RM_SAMPLES);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < RM_SAMPLES * RM_SAMPLES; ++i) {
+    vec2 offset = (vec2(i % RM_SAMPLES, i / RM_SAMPLES) + 0.5) / float(RM_SAMPLES) - 0.5;
+    sum += rmRender(camera.position, rmCameraRay(camera, fragCoord + offset, resolution), cone);
+  }
+  return sum / float(RM_SAMPLES * RM_SAMPLES);
 }
 
 #endif  // RM_RENDER_GLSL

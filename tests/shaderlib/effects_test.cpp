@@ -95,6 +95,26 @@ INSTANTIATE_TEST_SUITE_P(
                             "absorption", "fog"}}),
     [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
 
+// Presets set the knobs together; a knob given on its own wins.
+TEST(Quality, PresetsSetTheKnobsAndAnExplicitKnobWins) {
+  auto settings = [](const std::vector<Define>& defines) {
+    TempDir dir;
+    write_file(dir / "scene.frag", kScene);
+    SourceOptions options;
+    options.shaderlib_dir = shaderlib_dir();
+    options.defines = defines;
+    Diagnostics diags;
+    const auto text = expand_preprocessor(preprocess(dir / "scene.frag", options), &diags);
+    return body_of(text.value_or(""), "RmMarchSettings rmMarchSettings");
+  };
+  EXPECT_NE(settings({}).find("160"), std::string::npos) << settings({});
+  EXPECT_NE(settings({{"RM_QUALITY", "RM_DRAFT"}}).find("64"), std::string::npos);
+  EXPECT_NE(settings({{"RM_QUALITY", "RM_REFERENCE"}}).find("2000"), std::string::npos);
+  const std::string both = settings({{"RM_QUALITY", "RM_DRAFT"}, {"RM_MAX_STEPS", "300"}});
+  EXPECT_NE(both.find("300"), std::string::npos) << both;
+  EXPECT_EQ(both.find(" 64,"), std::string::npos) << both;
+}
+
 // Run-time selection: map() evaluations per pixel, counted by the scene, for
 // rays at a mirror sphere (left) and a matte one (right) over a matte floor,
 // rendered with and without RM_REFLECTIONS / RM_REFRACTION / shadows. A pixel

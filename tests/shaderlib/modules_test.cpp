@@ -93,7 +93,8 @@ TEST_P(Module, DocumentsEveryFunction) {
     }
     previous = line;
   }
-  EXPECT_FALSE(seen.empty());
+  // Nothing seen means the patterns above failed, unless the module is macros only.
+  EXPECT_TRUE(!seen.empty() || text.find("\n#define RM_") != std::string::npos) << "no functions found";
 }
 
 INSTANTIATE_TEST_SUITE_P(Shaderlib, Module, ::testing::ValuesIn(modules()),
