@@ -12,6 +12,7 @@
 
 #include "core/data_paths.h"
 #include "core/diagnostics.h"
+#include "core/views.h"
 #include "headless/render_command.h"
 #include "window/window_app.h"
 
@@ -178,6 +179,10 @@ int main(int argc, char** argv) {
   render->add_option("--fps", fps, "Frames per second of a sequence")->type_name("F")->check(CLI::Range(0.001, 100000.0));
   render->add_option("--mouse", mouse, "iMouse as X,Y[,CX,CY] in pixels")->type_name("X,Y[,CX,CY]");
   render->add_option("--date", date, "iDate as local YYYY-MM-DDTHH:MM:SS[.sss] (default: now)")->type_name("DATE");
+  std::string view;
+  render->add_option("--view", view, "A debug view instead of the picture: map() calls per pixel as a heatmap, "
+                                     "normals, depth, or NaN/Inf pixels in magenta")
+      ->check(CLI::IsMember({"steps", "normals", "depth", "nan"}));
   render_channels.add_to(*render);
 
   // check
@@ -213,6 +218,7 @@ int main(int argc, char** argv) {
       if (frame >= 0) req.frame = frame;
       req.frames = frames;
       req.fps = fps;
+      if (!view.empty()) req.view = *rm::view_from_string(view);
       if (!mouse.empty()) req.mouse = parse_mouse(mouse);
       if (!date.empty()) req.date = parse_date(date);
       req.channels = render_channels.get();

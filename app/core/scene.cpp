@@ -27,6 +27,23 @@ ReloadStatus Scene::reload() {
     diagnostics_ = source.errors;
     return ReloadStatus::Failed;
   }
+  auto keep_running_program = [this] {
+    if (!program_) return;
+    cache_.push_back({good_source_.text, std::move(*program_), std::move(good_source_)});
+    program_.reset();
+    if (cache_.size() > kCacheSize) cache_.erase(cache_.begin());
+  };
+  for (auto it = cache_.begin(); it != cache_.end(); ++it) {
+    if (it->text != source.text) continue;
+    Built cached = std::move(*it);
+    cache_.erase(it);
+    keep_running_program();
+    program_ = std::move(cached.program);
+    good_source_ = std::move(cached.source);
+    diagnostics_.clear();
+    ++generation_;
+    return ReloadStatus::Swapped;
+  }
   diags = validate(source);
   if (count_errors(diags) > 0) {
     diagnostics_ = std::move(diags);
@@ -38,6 +55,7 @@ ReloadStatus Scene::reload() {
     diagnostics_ = std::move(driver);
     return ReloadStatus::Failed;
   }
+  keep_running_program();
   program_ = std::move(built);
   good_source_ = std::move(source);
   diagnostics_ = std::move(diags);  // warnings only

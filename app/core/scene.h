@@ -23,8 +23,12 @@ class Scene {
  public:
   Scene(fs::path path, SourceOptions options);
 
-  // Re-reads the files; needs a current GL context.
+  // Re-reads the files; needs a current GL context. A text built before (a
+  // view or a preset switched back) comes from the cache without a compile.
   ReloadStatus reload();
+  // New -I/-D options (a view, a preset); they apply at the next reload().
+  void set_options(SourceOptions options) { options_ = std::move(options); }
+  const SourceOptions& options() const { return options_; }
 
   const Program* program() const { return program_ ? &*program_ : nullptr; }
   const Source& source() const { return good_source_; }  // of the running program
@@ -45,6 +49,14 @@ class Scene {
   Diagnostics diagnostics_;
   std::vector<fs::path> watch_;
   int generation_ = 0;
+  // Programs built before, by final text, oldest first; at most kCacheSize.
+  struct Built {
+    std::string text;
+    Program program;
+    Source source;
+  };
+  static constexpr size_t kCacheSize = 8;
+  std::vector<Built> cache_;
 };
 
 }  // namespace rm

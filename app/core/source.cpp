@@ -31,11 +31,30 @@ uniform vec2 rm_FragCoordOffset;
 out vec4 rm_FragColor;)";
 
 // Shadertoy leaves fragColor's start value undefined; we start from opaque black.
-const char* const kShadertoyMain = R"(void main() {
+// With RM_VIEW (render --view, the window's V key) the pixel becomes a debug
+// view: nan works for any shader, the others read what shaderlib recorded.
+const char* const kShadertoyMain = R"glsl(#ifdef RM_VIEW
+vec4 rm_view(vec4 color, vec2 fragCoord) {
+  bool bad = any(isnan(color)) || any(isinf(color));
+#if RM_VIEW == 4
+  float grey = dot(clamp(color.rgb, 0.0, 1.0), vec3(0.2126, 0.7152, 0.0722));
+  return bad ? vec4(1.0, 0.0, 1.0, 1.0) : vec4(vec3(0.2 + 0.6 * grey), 1.0);
+#elif defined(RM_VIEWS_GLSL)
+  return rmView(color, fragCoord, iResolution, bad);
+#else
+#error "this view needs a scene that marches with shaderlib (rm/march.glsl)"
+#endif
+}
+#endif
+void main() {
   vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
-  mainImage(color, gl_FragCoord.xy + rm_FragCoordOffset);
+  vec2 fragCoord = gl_FragCoord.xy + rm_FragCoordOffset;
+  mainImage(color, fragCoord);
+#ifdef RM_VIEW
+  color = rm_view(color, fragCoord);
+#endif
   rm_FragColor = color;
-})";
+})glsl";
 
 // GLSL 1.10/1.20 and ES 1.00 names mapped onto a 4.50 core profile.
 const char* const kLegacyPrelude = R"(#define texture2D texture

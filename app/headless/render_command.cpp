@@ -77,15 +77,19 @@ int render_command(const RenderRequest& req) {
       return fail("--channel" + std::to_string(i) + " '" + path.string() + "': " + error, kExitUsage);
   }
 
+  const SourceOptions options = with_view(req.source, req.view);
+  if (const Source plain = preprocess(req.scene, req.source); plain.ok())
+    if (auto problem = view_problem(plain, req.view))
+      return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
   Diagnostics diags;
-  check_scene(req.scene, req.source, &diags);
+  check_scene(req.scene, options, &diags);
   print_diagnostics(diags);
   if (count_errors(diags)) return kExitShaderError;
 
   std::string error;
   auto context = EglContext::create(&error);
   if (!context) return fail(error, kExitUsage);
-  Scene scene(req.scene, req.source);
+  Scene scene(req.scene, options);
   if (scene.reload() != ReloadStatus::Swapped) {
     print_diagnostics(scene.diagnostics());
     return kExitShaderError;

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "core/source.h"
+#include "core/views.h"
 
 namespace rm {
 
@@ -24,6 +25,7 @@ struct RenderRequest {
   glm::vec4 mouse{0.0f};
   std::array<std::filesystem::path, 4> channels;
   std::optional<std::chrono::system_clock::time_point> date;  // default: now
+  View view = View::Picture;  // --view: a debug view instead of the picture
 };
 
 int render_command(const RenderRequest& request);

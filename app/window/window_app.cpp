@@ -13,6 +13,7 @@
 
 #include "core/capture.h"
 #include "core/channels.h"
+#include "core/views.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 
@@ -25,6 +26,7 @@ const char* window_keys_help() {
          "  R            restart time and frame counter\n"
          "  Left/Right   step time by 1/60 s (while paused)\n"
          "  F11          toggle fullscreen\n"
+         "  V            cycle views: picture, steps, normals, depth, nan\n"
          "  Esc, Q       quit\n"
          "  F1           print these keys\n"
          "mouse:\n"
@@ -199,6 +201,7 @@ class WindowApp {
       std::snprintf(buf, sizeof buf, "%.1f ms", frame_ms_);
       title += buf;
     }
+    if (view_ != View::Picture) title += std::string(" (view: ") + to_string(view_) + ")";
     if (clock_.paused()) title += " (paused)";
     if (scene_.program() && !use_.time) title += " (static: drawn on change)";
     glfwSetWindowTitle(window_, title.c_str());
@@ -228,6 +231,17 @@ class WindowApp {
     auto written = write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, in), Overwrite::Never, &error);
     if (written) std::cout << "screenshot: " << written->string() << std::endl;
     else std::cerr << "raymarching: error: screenshot: " << error << '\n';
+  }
+
+  // V: picture, steps, normals, depth, nan, picture; views this scene cannot
+  // show are skipped. Each view is its own program, cached by the scene.
+  void cycle_view() {
+    View next = next_view(view_);
+    while (next != View::Picture && view_problem(scene_.source(), next)) next = next_view(next);
+    view_ = next;
+    scene_.set_options(with_view(options_.source, view_));
+    load();
+    if (options_.verbose) std::cerr << "raymarching: view " << to_string(view_) << '\n';
   }
 
   void toggle_fullscreen() {
@@ -261,6 +275,7 @@ class WindowApp {
   bool shot_requested_ = false;
   bool quit_ = false;
   InputUse use_;       // what the running program reads
+  View view_ = View::Picture;
   long frames_drawn_ = 0;
   bool dirty_ = true;  // something it reads changed since the last frame
   double frame_ms_ = 16.7;
@@ -278,6 +293,7 @@ void WindowApp::on_key(int key, int action, int) {
     case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;
+    case GLFW_KEY_V: if (press) cycle_view(); break;
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: if (press) quit_ = true; break;
     case GLFW_KEY_F1: if (press) std::cout << window_keys_help() << std::flush; break;
     default: break;

@@ -1,7 +1,8 @@
 // rm/map.glsl: the scene's map() as the library calls it, so that a build can
 // count every evaluation (primary rays, normals, shadows, AO, secondary rays).
 // Provides: rmMap, and rmEvaluations when RM_COUNT is defined.
-// Needs: the scene's `float map(vec3 p)` (declared here).
+// Needs: the scene's `float map(vec3 p)` (declared here); rm/views.glsl
+//   (included, for the debug views).
 // Knobs: RM_COUNT (define it to count; the count is per pixel, in
 //   rmEvaluations). Without it rmMap is map itself: counting costs nothing.
 #ifndef RM_MAP_GLSL
@@ -21,5 +22,7 @@ float rmMap(vec3 p) {
 #else
 #define rmMap map
 #endif
+
+#include <rm/views.glsl>
 
 #endif  // RM_MAP_GLSL

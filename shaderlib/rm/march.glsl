@@ -3,7 +3,7 @@
 // plane and optional bounding volumes; also marches inside objects.
 // Provides: RM_HIT, RM_MISS, RM_OUT_OF_STEPS, RmMarchSettings, RmMarch,
 //   rmMarchSettings, rmHitThreshold, rmRaySphere, rmRayBox, rmRayGround,
-//   rmMarch, rmSurfaceOffset.
+//   rmEndOnGround, rmMarch, rmSurfaceOffset.
 // Needs: the scene's `float map(vec3 p)` (defined by the scene; map() calls go
 //   through rmMap, which RM_COUNT counts); rm/common.glsl and rm/map.glsl (included);
 //   map must be a bound (Lipschitz <= 1) for the march to be safe.
@@ -112,6 +112,15 @@ float rmRayGround(vec3 ro, vec3 rd, float height) {
   return above / -rd.y;
 }
 
+// The march's result when the ray leaves map()'s range: a hit on the ground
+// (recorded for the debug views) or a miss.
+RmMarch rmEndOnGround(RmMarch m) {
+#ifdef RM_VIEW
+  if (m.ground) rmRecordHit(m.t);
+#endif
+  return m;
+}
+
 // Sphere traces the ray ro + t rd (rd unit) through map(). With omega > 1 each
 // step is stretched by omega; when the stretched step overshoots (the unbounding
 // spheres of two steps stop overlapping), it goes back to the plain step and
@@ -125,16 +134,17 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
   RmMarch miss = RmMarch(tEnd, 0, groundAhead ? RM_HIT : RM_MISS, groundAhead,
                          rmHitThreshold(s, tEnd, length(ro)));
 
+
   float t = s.tMin;
   if (s.boundSphere.w > 0.0) {
     vec2 span = rmRaySphere(ro, rd, s.boundSphere.xyz, s.boundSphere.w);
-    if (span.x > span.y || span.y < t) return miss;
+    if (span.x > span.y || span.y < t) return rmEndOnGround(miss);
     t = max(t, span.x);
     tEnd = min(tEnd, span.y);
   }
   if (s.boundBox) {
     vec2 span = rmRayBox(ro, rd, s.boundMin, s.boundMax);
-    if (span.x > span.y || span.y < t) return miss;
+    if (span.x > span.y || span.y < t) return rmEndOnGround(miss);
     t = max(t, span.x);
     tEnd = min(tEnd, span.y);
   }
@@ -146,7 +156,7 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
   for (int i = 0; i < s.maxSteps; ++i) {
     if (t > tEnd) {
       miss.steps = i;
-      return miss;
+      return rmEndOnGround(miss);
     }
     float d = s.side * rmMap(ro + rd * t);
     if (omega > 1.0 && stepLength > 0.0 && d + previousD < stepLength) {
@@ -157,14 +167,19 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
       continue;
     }
     float threshold = rmHitThreshold(s, t, originScale);
-    if (d < threshold) return RmMarch(t, i + 1, RM_HIT, false, threshold);
+    if (d < threshold) {
+#ifdef RM_VIEW
+      rmRecordHit(t);
+#endif
+      return RmMarch(t, i + 1, RM_HIT, false, threshold);
+    }
     previousD = d;
     stepLength = omega * d;
     t += stepLength;
   }
   if (t > tEnd) {
     miss.steps = s.maxSteps;
-    return miss;
+    return rmEndOnGround(miss);
   }
   return RmMarch(t, s.maxSteps, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
 }

@@ -49,10 +49,14 @@ vec3 rmNormalCentral(vec3 p, float eps) {
 vec3 rmNormal(vec3 p, float tolerance) {
   float eps = rmNormalEpsilon(p, tolerance);
 #if RM_NORMAL_TAPS == 6
-  return rmNormalCentral(p, eps);
+  vec3 n = rmNormalCentral(p, eps);
 #else
-  return rmNormalTetrahedron(p, eps);
+  vec3 n = rmNormalTetrahedron(p, eps);
 #endif
+#ifdef RM_VIEW
+  rmRecordNormal(n);
+#endif
+  return n;
 }
 
 #endif  // RM_NORMALS_GLSL

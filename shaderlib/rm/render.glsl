@@ -160,6 +160,9 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
     }
     vec3 p = ro + rd * m.t;
     vec3 n = m.ground ? vec3(0.0, 1.0, 0.0) : rmNormal(p, m.tolerance);
+#ifdef RM_VIEW
+    rmRecordNormal(n);  // the ground's, which rmNormal never sees
+#endif
     float offset = rmSurfaceOffset(p, m.tolerance);
     if (bounce == 0) firstT = m.t;
 

@@ -163,6 +163,14 @@ def main():
     shot = take_shot()
     check("no screenshot is overwritten", set(before) < set(os.listdir(shots)), os.listdir(shots))
 
+    # V cycles the debug views; this scene has no shaderlib, so only nan.
+    xdotool("key", "--window", window, "v")
+    check("V switches to a debug view", wait_for(lambda: "(view: nan)" in xdotool("getwindowname", window)),
+          xdotool("getwindowname", window))
+    xdotool("key", "--window", window, "v")
+    check("V again returns to the picture", wait_for(lambda: "view:" not in xdotool("getwindowname", window)),
+          xdotool("getwindowname", window))
+
     xdotool("key", "--window", window, "q")
     try:
         status = proc.wait(timeout=10)
