@@ -2,6 +2,7 @@
 //   raymarching [SCENE]            open a window (default scene without SCENE)
 //   raymarching render SCENE -o F  render headless through EGL
 //   raymarching check SCENE [-E]   preprocess and validate only (-E: print the result)
+//   raymarching accuracy SCENE     what each accuracy knob costs and buys
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +14,7 @@
 #include "core/data_paths.h"
 #include "core/diagnostics.h"
 #include "core/views.h"
+#include "headless/accuracy_command.h"
 #include "headless/render_command.h"
 #include "window/window_app.h"
 
@@ -194,6 +196,19 @@ int main(int argc, char** argv) {
   check->add_flag("-E,--expand", expand, "Print what the compiler sees: the source after the preprocessor");
   check_common.add_to(*check);
 
+  // accuracy
+  CLI::App* accuracy = app.add_subcommand(
+      "accuracy", "Measure what each shaderlib accuracy knob costs (GPU time, map() calls) and buys (error against a reference)");
+  Common accuracy_common;
+  std::string accuracy_scene, accuracy_size = "320x180", accuracy_out;
+  double accuracy_time = 1.0;
+  accuracy->add_option("scene", accuracy_scene, "Scene that renders with shaderlib")->required()->type_name("SCENE");
+  accuracy->add_option("--size", accuracy_size, "Picture size in pixels (default 320x180)")->type_name("WxH");
+  accuracy->add_option("--time", accuracy_time, "iTime of the measured frame (default 1)")->type_name("T");
+  accuracy->add_option("--out", accuracy_out, "Directory for accuracy.csv, accuracy.svg, reference.png, steps.png "
+                                              "(default accuracy-SCENE)")->type_name("DIR");
+  accuracy_common.add_to(*accuracy);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -203,6 +218,16 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*accuracy) {
+      require_readable_file(accuracy_scene);
+      rm::AccuracyRequest req;
+      req.scene = accuracy_scene;
+      req.source = accuracy_common.source();
+      req.size = parse_size(accuracy_size, "--size");
+      req.time = accuracy_time;
+      req.out = accuracy_out;
+      return rm::accuracy_command(req);
+    }
     if (*check) {
       require_readable_file(check_scene);
       return rm::check_command(check_scene, check_common.source(), expand);

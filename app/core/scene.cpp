@@ -14,11 +14,12 @@ Source check_scene(const fs::path& path, const SourceOptions& options, Diagnosti
   return source;
 }
 
-Scene::Scene(fs::path path, SourceOptions options) : path_(std::move(path)), options_(std::move(options)) {}
+Scene::Scene(fs::path path, SourceOptions options, FileSystem files)
+    : path_(std::move(path)), options_(std::move(options)), files_(std::move(files)) {}
 
 ReloadStatus Scene::reload() {
   Diagnostics diags;
-  Source source = preprocess(path_, options_);
+  Source source = preprocess(path_, options_, files_);
   watch_ = source.watch;
   if (source.ok() && attempted_ && source.text == attempted_text_) return ReloadStatus::Unchanged;
   attempted_ = source.ok();

@@ -21,7 +21,9 @@ Source check_scene(const fs::path& path, const SourceOptions& options, Diagnosti
 
 class Scene {
  public:
-  Scene(fs::path path, SourceOptions options);
+  // `files` is how it reads the scene and its includes (tests and the
+  // accuracy command pass their own).
+  Scene(fs::path path, SourceOptions options, FileSystem files = disk_file_system());
 
   // Re-reads the files; needs a current GL context. A text built before (a
   // view or a preset switched back) comes from the cache without a compile.
@@ -42,6 +44,7 @@ class Scene {
  private:
   fs::path path_;
   SourceOptions options_;
+  FileSystem files_;
   std::optional<Program> program_;
   Source good_source_;
   std::string attempted_text_;

@@ -66,6 +66,34 @@ TEST_F(Cli, CheckExpandPrintsThePreprocessedSource) {
   EXPECT_EQ(text.find("fancy_marker"), std::string::npos) << text;
 }
 
+// `accuracy` sweeps the knobs of a shaderlib scene and writes its report.
+TEST_F(Cli, AccuracyWritesATableACsvAChartAndPictures) {
+  write_file(dir_ / "sphere.frag", "#define RM_SHADOWS 2\n#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
+                                   "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
+                                   "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
+                                   "void mainImage(out vec4 c, in vec2 f) {\n"
+                                   "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
+                                   "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
+  const auto out = dir_ / "report";
+  const test::Outcome r = run("accuracy " + (dir_ / "sphere.frag").string() + " --size 32x18 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("[1/"), std::string::npos) << "no progress shown";
+  const std::string csv = test::read_file(out / "accuracy.csv");
+  EXPECT_EQ(csv.rfind("knob,value,ms,evaluations_mean", 0), 0u) << csv;
+  EXPECT_GT(lines(csv), 40);
+  EXPECT_NE(csv.find("textbook,textbook,"), std::string::npos);
+  EXPECT_NE(csv.find("RM_SHADOW_STEPS,8,"), std::string::npos);
+  EXPECT_EQ(test::read_file(out / "accuracy.svg").rfind("<svg", 0), 0u);
+  EXPECT_EQ(test::read_pixels(out / "reference.png").size(), 32u * 18u * 4u);
+  EXPECT_EQ(test::read_pixels(out / "steps.png").size(), 32u * 18u * 4u);
+}
+
+TEST_F(Cli, AccuracyNeedsAShaderlibScene) {
+  const test::Outcome r = run("accuracy " + good() + " --out " + (dir_ / "x").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("needs a scene that marches with shaderlib"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
   const std::string g = good();
   const std::string out = (dir_ / "o.png").string();

@@ -1,0 +1,344 @@
+#include "headless/accuracy_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "core/capture.h"
+#include "core/channels.h"
+#include "core/check.h"
+#include "core/diagnostics.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+#include "core/views.h"
+#include "headless/egl_context.h"
+#include "headless/svg_chart.h"
+
+namespace rm {
+namespace {
+
+// One point of the sweep: a knob at one value (or a preset, or the textbook loop).
+struct Setting {
+  std::string knob;    // the curve it belongs to
+  std::string value;
+  std::vector<Define> defines;
+  std::vector<std::string> strip;  // scene #defines removed besides the knobs set
+  std::string label() const { return knob == value ? knob : knob + "=" + value; }
+};
+
+struct Measured {
+  Setting setting;
+  bool ok = false;
+  bool no_effect = false;  // compiles to the same program as the default
+  double ms = 0, evals_mean = 0, evals_max = 0, rmse = 0, psnr = 0, hit_miss = 0, depth_error = 0;
+  size_t nan = 0;
+};
+
+std::vector<Setting> sweep() {
+  std::vector<Setting> out = {{"default", "default", {}, {}}};
+  auto knob = [&](const std::string& name, std::initializer_list<const char*> values) {
+    for (const char* v : values) out.push_back({name, v, {{name, v}}, {}});
+  };
+  knob("RM_HIT_PIXELS", {"0.25", "0.5", "2", "4", "8"});
+  for (const char* eps : {"0.01", "0.001", "0.0001"})  // a fixed absolute threshold, no pixel cone
+    out.push_back({"absolute threshold", eps, {{"RM_HIT_PIXELS", "0.0"}, {"RM_HIT_EPSILON", eps}}, {}});
+  knob("RM_MAX_STEPS", {"32", "64", "128", "256", "512"});
+  knob("RM_MAX_DISTANCE", {"20.0", "50.0"});
+  knob("RM_OMEGA", {"1.2", "1.4", "1.6"});
+  knob("RM_NORMAL_TAPS", {"6"});
+  knob("RM_NORMAL_EPSILON", {"1e-5", "1e-3", "1e-2"});
+  knob("RM_SHADOW_STEPS", {"8", "16", "32", "128"});
+  knob("RM_SHADOW_SHARPNESS", {"8.0", "32.0"});
+  knob("RM_AO_SAMPLES", {"2", "3", "8"});
+  knob("RM_REFLECTIONS", {"0", "1", "2", "4"});
+  knob("RM_REFRACTION", {"0", "2", "4", "8"});
+  knob("RM_SAMPLES", {"2", "3"});
+  for (const char* preset : {"draft", "interactive", "final"}) {
+    std::string name = std::string("RM_") + preset;
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+    out.push_back({"preset", preset, {{"RM_QUALITY", name}}, {}});
+  }
+  // The loop a tutorial writes: a fixed absolute epsilon, no over-relaxation, no bounds.
+  out.push_back({"textbook", "textbook",
+                 {{"RM_HIT_PIXELS", "0.0"}, {"RM_HIT_EPSILON", "0.001"}, {"RM_OMEGA", "1.0"}},
+                 {"RM_BOUNDING_SPHERE"}});
+  return out;
+}
+
+// Reads the scene with its own #defines of `names` blanked (lines keep their
+// numbers), so that a -D can set knobs the scene sets itself.
+FileSystem scene_without_defines(const fs::path& scene, std::vector<std::string> names) {
+  FileSystem disk = disk_file_system();
+  FileSystem files = disk;
+  const fs::path target = fs::weakly_canonical(scene);
+  files.read = [disk, target, names](const fs::path& path, std::string* error) -> std::optional<std::string> {
+    auto text = disk.read(path, error);
+    if (!text || names.empty() || fs::weakly_canonical(path) != target) return text;
+    static const std::regex define_re(R"(^\s*#\s*define\s+(\w+))");
+    std::istringstream in(*text);
+    std::string line, out;
+    while (std::getline(in, line)) {
+      std::smatch m;
+      if (std::regex_search(line, m, define_re) && std::find(names.begin(), names.end(), m[1]) != names.end())
+        line.clear();
+      out += line + '\n';
+    }
+    return out;
+  };
+  return files;
+}
+
+struct Renders {
+  Image color;   // the picture
+  Image data;    // RM_VIEW_DATA: (map() calls, primary t or -1, bad, 1)
+  double ms = 0;
+};
+
+class Bench {
+ public:
+  Bench(const AccuracyRequest& req) : req_(req), target_(req.size.x, req.size.y) {
+    inputs_.resolution = glm::vec3(req.size, 1.0f);
+    inputs_.time = static_cast<float>(req.time);
+    inputs_.frame = static_cast<int>(req.time * 60.0);
+    inputs_.frame_rate = 60.0f;
+    inputs_.time_delta = 1.0f / 60.0f;
+  }
+
+  // The program text of `setting` after glslang's preprocessor: equal texts
+  // are the same program.
+  std::string expanded(const Setting& setting) {
+    SourceOptions options = options_for(setting);
+    const Source source = preprocess(req_.scene, options, files_for(setting));
+    Diagnostics diags;
+    return expand_preprocessor(source, &diags).value_or("");
+  }
+
+  // The picture and the data view of `setting`; the data view of `data_setting`
+  // when given (the reference's depth comes from one centred sample).
+  std::optional<Renders> render(const Setting& setting, std::string* error, const Setting* data_setting = nullptr) {
+    const Setting& d = data_setting ? *data_setting : setting;
+    Scene color(req_.scene, options_for(setting), files_for(setting));
+    Scene data(req_.scene, with_view(options_for(d), View::Data), files_for(d));
+    if (color.reload() != ReloadStatus::Swapped || data.reload() != ReloadStatus::Swapped) {
+      *error = join(color.diagnostics().empty() ? data.diagnostics() : color.diagnostics());
+      return std::nullopt;
+    }
+    Channels channels;
+    if (!channels.use_scene_defaults(color.source().channels, {}, error)) return std::nullopt;
+    Renders out;
+    out.ms = time_frames(*color.program(), channels);
+    out.color = renderer_.render_image(*color.program(), inputs_, channels, req_.size);
+    out.data = renderer_.render_image(*data.program(), inputs_, channels, req_.size);
+    return out;
+  }
+
+ private:
+  SourceOptions options_for(const Setting& setting) const {
+    SourceOptions options = req_.source;
+    for (const Define& d : setting.defines) options.defines.push_back(d);
+    return options;
+  }
+
+  FileSystem files_for(const Setting& setting) const {
+    std::vector<std::string> names = setting.strip;
+    for (const Define& d : setting.defines) names.push_back(d.name);
+    return scene_without_defines(req_.scene, names);
+  }
+
+  // GPU time of one frame: the median of 10 GL_TIME_ELAPSED queries after 3 warm-up frames.
+  double time_frames(const Program& program, const Channels& channels) {
+    GLuint query = 0;
+    glGenQueries(1, &query);
+    std::vector<double> ms;
+    for (int i = 0; i < 13; ++i) {
+      target_.bind();
+      glBeginQuery(GL_TIME_ELAPSED, query);
+      renderer_.draw(program, inputs_, channels, req_.size);
+      // Software renderers (llvmpipe) rasterise on worker threads after the
+      // draw returns: finish inside the query so it spans the real work.
+      glFinish();
+      glEndQuery(GL_TIME_ELAPSED);
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+      if (i >= 3) ms.push_back(static_cast<double>(ns) / 1e6);
+    }
+    glDeleteQueries(1, &query);
+    std::sort(ms.begin(), ms.end());
+    return ms[ms.size() / 2];
+  }
+
+  const AccuracyRequest& req_;
+  Renderer renderer_;
+  RenderTarget target_;
+  FrameInputs inputs_;
+};
+
+void compare(const Renders& got, const Renders& reference, Measured* m) {
+  const size_t pixels = got.color.rgba.size() / 4;
+  double squared = 0, depth = 0, evals = 0, evals_max = 0;
+  size_t mismatched = 0, both_hit = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    bool bad = false;
+    for (int c = 0; c < 3; ++c) {
+      const float v = got.color.rgba[i * 4 + c];
+      bad = bad || !std::isfinite(v);
+      const double d = std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) -
+                       std::clamp(reference.color.rgba[i * 4 + c], 0.0f, 1.0f);
+      squared += d * d;
+    }
+    m->nan += bad;
+    const float count = got.data.rgba[i * 4], t = got.data.rgba[i * 4 + 1], ref_t = reference.data.rgba[i * 4 + 1];
+    evals += count;
+    evals_max = std::max<double>(evals_max, count);
+    if ((t < 0) != (ref_t < 0)) ++mismatched;
+    if (t >= 0 && ref_t >= 0) depth += std::abs(t - ref_t), ++both_hit;
+  }
+  m->rmse = std::sqrt(squared / (3.0 * pixels));
+  m->psnr = m->rmse > 0 ? std::min(99.0, 20.0 * std::log10(1.0 / m->rmse)) : 99.0;
+  m->hit_miss = static_cast<double>(mismatched) / pixels;
+  m->depth_error = both_hit ? depth / both_hit : 0.0;
+  m->evals_mean = evals / pixels;
+  m->evals_max = evals_max;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+void write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows) {
+  std::ofstream csv(req.out / "accuracy.csv");
+  csv << "knob,value,ms,evaluations_mean,evaluations_max,rmse,psnr_db,hit_miss_share,depth_error,nan_pixels,no_effect\n";
+  for (const Measured& m : rows)
+    if (m.ok)
+      csv << m.setting.knob << ',' << m.setting.value << ',' << fixed(m.ms, 3) << ',' << fixed(m.evals_mean, 2) << ','
+          << fixed(m.evals_max, 0) << ',' << fixed(m.rmse, 5) << ',' << fixed(m.psnr, 2) << ','
+          << fixed(m.hit_miss, 5) << ',' << fixed(m.depth_error, 5) << ',' << m.nan << ',' << m.no_effect << '\n';
+
+  // A curve per knob through the default, ordered by time.
+  std::map<std::string, ChartSeries> curves;
+  const Measured* base = rows.front().ok ? &rows.front() : nullptr;
+  for (const Measured& m : rows) {
+    if (!m.ok || m.no_effect || m.setting.knob == "default") continue;
+    ChartSeries& s = curves[m.setting.knob];
+    s.name = m.setting.knob;
+    s.points.emplace_back(m.ms, m.psnr);
+  }
+  std::vector<ChartSeries> series;
+  for (auto& [name, s] : curves) {
+    if (base && name != "preset" && name != "textbook") s.points.emplace_back(base->ms, base->psnr);
+    std::sort(s.points.begin(), s.points.end());
+    series.push_back(std::move(s));
+  }
+  if (base) series.push_back({"default", {{base->ms, base->psnr}}});
+  std::ofstream svg(req.out / "accuracy.svg");
+  svg << svg_chart(req.scene.filename().string() + ": image error against GPU time (" + std::to_string(req.size.x) +
+                       "x" + std::to_string(req.size.y) + ")",
+                   "GPU time per frame (ms)", "PSNR against the reference (dB)", series);
+}
+
+}  // namespace
+
+int accuracy_command(const AccuracyRequest& input) {
+  AccuracyRequest req = input;
+  if (req.out.empty()) req.out = "accuracy-" + req.scene.stem().string();
+  std::error_code ec;
+  fs::create_directories(req.out, ec);
+  if (ec) {
+    std::cerr << "raymarching: error: '" << req.out.string() << "': " << ec.message() << '\n';
+    return kExitUsage;
+  }
+  std::string error;
+  auto context = EglContext::create(&error);
+  if (!context) {
+    std::cerr << "raymarching: error: " << error << '\n';
+    return kExitUsage;
+  }
+  {
+    Source plain = preprocess(req.scene, req.source);
+    if (!plain.ok()) {
+      std::cerr << join(plain.errors);
+      return kExitShaderError;
+    }
+    if (auto problem = view_problem(plain, View::Steps)) {
+      std::cerr << "raymarching: error: accuracy: " << *problem << '\n';
+      return kExitUsage;
+    }
+  }
+
+  Bench bench(req);
+  std::cerr << "accuracy: rendering the reference (preset reference)...\n";
+  const Setting reference_setting{"reference", "reference", {{"RM_QUALITY", "RM_REFERENCE"}}, {}};
+  const Setting reference_centre{"reference", "reference", {{"RM_QUALITY", "RM_REFERENCE"}, {"RM_SAMPLES", "1"}}, {}};
+  const auto reference = bench.render(reference_setting, &error, &reference_centre);
+  if (!reference) {
+    std::cerr << error;
+    return kExitShaderError;
+  }
+  write_image(req.out / "reference.png", reference->color, {}, Overwrite::Replace, &error);
+
+  const std::vector<Setting> settings = sweep();
+  const std::string default_text = bench.expanded(settings.front());
+  std::vector<Measured> rows;
+  for (size_t i = 0; i < settings.size(); ++i) {
+    const Setting& s = settings[i];
+    std::cerr << "accuracy: [" << i + 1 << "/" << settings.size() << "] " << s.label() << '\n';
+    Measured m{s};
+    if (i > 0 && bench.expanded(s) == default_text) {  // the scene does not use this knob
+      m = rows.front();
+      m.setting = s;
+      m.no_effect = true;
+      rows.push_back(m);
+      continue;
+    }
+    auto got = bench.render(s, &error);
+    if (!got) {
+      std::cerr << "accuracy: " << s.label() << " does not build:\n" << error;
+      rows.push_back(m);
+      continue;
+    }
+    m.ok = true;
+    m.ms = got->ms;
+    compare(*got, *reference, &m);
+    rows.push_back(m);
+  }
+  // The default's steps as a heatmap picture.
+  {
+    SourceOptions steps = with_view(req.source, View::Steps);
+    Scene scene(req.scene, steps);
+    if (scene.reload() == ReloadStatus::Swapped) {
+      Renderer renderer;
+      Channels channels;
+      std::string ignored;
+      channels.use_scene_defaults(scene.source().channels, {}, &ignored);
+      FrameInputs in;
+      in.resolution = glm::vec3(req.size, 1.0f);
+      in.time = static_cast<float>(req.time);
+      write_image(req.out / "steps.png", renderer.render_image(*scene.program(), in, channels, req.size), {},
+                  Overwrite::Replace, &error);
+    }
+  }
+
+  std::printf("| setting | GPU ms | map() calls mean | max | PSNR dB | hit/miss differs | depth error | NaN |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (const Measured& m : rows) {
+    if (!m.ok) {
+      std::printf("| %s | does not build | | | | | | |\n", m.setting.label().c_str());
+      continue;
+    }
+    std::printf("| %s%s | %.2f | %.1f | %.0f | %.1f | %.2f%% | %.4f | %zu |\n", m.setting.label().c_str(),
+                m.no_effect ? " (no effect)" : "", m.ms, m.evals_mean, m.evals_max, m.psnr, 100.0 * m.hit_miss,
+                m.depth_error, m.nan);
+  }
+  write_outputs(req, rows);
+  std::cerr << "accuracy: wrote " << (req.out / "accuracy.csv").string() << ", accuracy.svg, reference.png, steps.png\n";
+  return kExitOk;
+}
+
+}  // namespace rm
