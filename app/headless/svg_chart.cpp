@@ -10,8 +10,10 @@ namespace {
 
 constexpr double kWidth = 860, kHeight = 520, kLeft = 70, kRight = 230, kTop = 40, kBottom = 60;
 
-const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
-                                "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#aec7e8"};
+// Twenty distinguishable colours (Tableau 20 order), so no two curves share one.
+const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                                "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#aec7e8", "#ffbb78", "#98df8a",
+                                "#ff9896", "#c5b0d5", "#c49c94", "#f7b6d2", "#dbdb8d", "#9edae5"};
 
 // About five round tick values covering [lo, hi].
 std::vector<double> ticks(double lo, double hi) {

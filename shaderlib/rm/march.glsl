@@ -8,7 +8,7 @@
 //   through rmMap, which RM_COUNT counts); rm/common.glsl and rm/map.glsl (included);
 //   map must be a bound (Lipschitz <= 1) for the march to be safe.
 // Knobs (set with #define before the include, or -D on the command line):
-//   RM_MAX_STEPS, RM_MAX_DISTANCE, RM_HIT_CONE, RM_HIT_EPSILON, RM_OMEGA.
+//   RM_MAX_STEPS, RM_MAX_DISTANCE, RM_HIT_CONE, RM_HIT_PIXELS, RM_HIT_EPSILON, RM_OMEGA.
 #ifndef RM_MARCH_GLSL
 #define RM_MARCH_GLSL
 
@@ -27,6 +27,11 @@
 // Hit threshold per unit of t: half a pixel's footprint (see rmPixelCone).
 #ifndef RM_HIT_CONE
 #define RM_HIT_CONE 1e-3
+#endif
+// Hit threshold in half-pixel footprints: every march scales its cone by this;
+// 0 leaves only RM_HIT_EPSILON, a fixed absolute threshold.
+#ifndef RM_HIT_PIXELS
+#define RM_HIT_PIXELS 1.0
 #endif
 // Smallest hit threshold, near the camera.
 #ifndef RM_HIT_EPSILON
@@ -81,7 +86,7 @@ RmMarchSettings rmMarchSettings() {
 // below epsilon nor below a few float steps at the point's magnitude
 // (|ro| + t bounds it). Written so the part that depends on t is one multiply.
 float rmHitThreshold(RmMarchSettings s, float t, float originScale) {
-  return max(max(s.epsilon, 4.8e-7 * originScale), (s.cone + 4.8e-7) * t);
+  return max(max(s.epsilon, 4.8e-7 * originScale), (s.cone * RM_HIT_PIXELS + 4.8e-7) * t);
 }
 
 // Entry and exit distances of a ray (unit rd) through a sphere; x > y if it misses.

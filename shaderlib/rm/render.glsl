@@ -50,11 +50,6 @@
 #ifndef RM_SHADOW_SHARPNESS
 #define RM_SHADOW_SHARPNESS 16.0
 #endif
-// Hit threshold in half-pixel footprints (the pixel cone rmRender is given is
-// scaled by this); 0 leaves only RM_HIT_EPSILON, a fixed absolute threshold.
-#ifndef RM_HIT_PIXELS
-#define RM_HIT_PIXELS 1.0
-#endif
 // Supersampling: rmRenderPixel traces RM_SAMPLES x RM_SAMPLES rays per pixel.
 #ifndef RM_SAMPLES
 #define RM_SAMPLES 1
@@ -130,7 +125,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
 // RM_REFRACTION this is one march and one shading: no loop, no secondary rays.
 vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   RmMarchSettings s = rmMarchSettings();
-  s.cone = cone * RM_HIT_PIXELS;
+  s.cone = cone;
 #ifdef RM_GROUND
   s.ground = true;
   s.groundHeight = RM_GROUND;

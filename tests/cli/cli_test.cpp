@@ -79,7 +79,7 @@ TEST_F(Cli, AccuracyWritesATableACsvAChartAndPictures) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("[1/"), std::string::npos) << "no progress shown";
   const std::string csv = test::read_file(out / "accuracy.csv");
-  EXPECT_EQ(csv.rfind("knob,value,ms,evaluations_mean", 0), 0u) << csv;
+  EXPECT_EQ(csv.rfind("knob,value,ms,wall_ms,evaluations_mean", 0), 0u) << csv;
   EXPECT_GT(lines(csv), 40);
   EXPECT_NE(csv.find("textbook,textbook,"), std::string::npos);
   EXPECT_NE(csv.find("RM_SHADOW_STEPS,8,"), std::string::npos);
