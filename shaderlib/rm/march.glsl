@@ -102,10 +102,15 @@ vec2 rmRaySphere(vec3 ro, vec3 rd, vec3 centre, float radius) {
 // Entry and exit distances of a ray through the box [lo, hi]; x > y if it
 // misses. A zero direction component with the origin on a face gives no NaN.
 vec2 rmRayBox(vec3 ro, vec3 rd, vec3 lo, vec3 hi) {
-  // 1/0 would give inf, and inf * 0 (origin on the face) NaN: use a tiny finite slope.
-  vec3 inv = 1.0 / mix(rd, vec3(1e-30), lessThan(abs(rd), vec3(1e-30)));
+  // A ray parallel to a slab (a zero component) never crosses it: it lies in
+  // the closed slab for every t, or for none. Dividing by zero instead gives
+  // inf, and inf * 0 (origin on the face) NaN.
+  vec3 parallel = step(abs(rd), vec3(1e-30));
+  vec3 inv = 1.0 / (rd + parallel);
   vec3 t0 = (lo - ro) * inv, t1 = (hi - ro) * inv;
-  vec3 near = min(t0, t1), far = max(t0, t1);
+  vec3 inside = step(lo, ro) * step(ro, hi);
+  vec3 near = mix(min(t0, t1), mix(vec3(1e30), vec3(-1e30), inside), parallel);
+  vec3 far = mix(max(t0, t1), mix(vec3(-1e30), vec3(1e30), inside), parallel);
   return vec2(rmMaxComponent(near), rmMinComponent(far));
 }
 
