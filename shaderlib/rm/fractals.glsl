@@ -46,8 +46,8 @@ float sdSierpinski(vec3 p, int iterations) {
 }
 
 // Mandelbulb of the given power (8 is the classic) after `iterations`; it lies
-// within radius 1.2. approximate: it can exceed the distance to its surface
-// (by up to 0.02 in tests/stability); multiplied by 0.5 it never did
+// within radius 1.2. It can exceed the distance to its surface (by up to 0.02
+// in tests/stability); multiplied by 0.5 it never did. approximate, factor 2
 float sdMandelbulb(vec3 p, float power, int iterations) {
   vec3 z = p;
   float dr = 1.0;  // running derivative |dz/dp|
