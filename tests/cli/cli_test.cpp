@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "support.h"
 
@@ -125,6 +126,52 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
     EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Bad shader files: each is exit 1 (a shader problem) or 2 (I/O), with one
+// line on stderr naming the problem and the path, never a crash or a hang.
+TEST_F(Cli, BadShaderFilesGetOneClearLine) {
+  write_file(dir_ / "empty.frag", "");
+  write_file(dir_ / "garbage.frag", std::string("\x7f" "ELF\x02\x01\x00\x00\xff\xfe binary", 19));
+  write_file(dir_ / "missing_include.frag", "#include \"nowhere.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
+  std::filesystem::create_directories(dir_ / "adir");
+  write_file(dir_ / "include_dir.frag", "#include \"adir\"\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
+  write_file(dir_ / "cycle.frag", "#include \"c1.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
+  write_file(dir_ / "c1.glsl", "#include \"c2.glsl\"\n");
+  write_file(dir_ / "c2.glsl", "#include \"c1.glsl\"\n");
+  // A chain 200 includes deep: deep but legal (the limit is 256).
+  write_file(dir_ / "deep.frag", "#include \"d0.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(D199); }\n");
+  for (int i = 0; i < 200; ++i)
+    write_file(dir_ / ("d" + std::to_string(i) + ".glsl"),
+               i < 199 ? "#include \"d" + std::to_string(i + 1) + ".glsl\"\n" : "#define D199 1.0\n");
+  // Six megabytes of shader: a real function, padded with comment lines.
+  std::string big = "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n";
+  while (big.size() < 6u * 1024 * 1024) big += "// padding padding padding padding padding padding padding padding\n";
+  write_file(dir_ / "big.frag", big);
+  write_file(dir_ / "corrupt.png", "this is not a PNG");
+  const std::string out = " -o " + (dir_ / "o.png").string();
+  struct Case {
+    std::string args;
+    int status;
+    std::string says;  // part of the one line
+  };
+  const std::vector<Case> cases = {
+      {"check " + (dir_ / "empty.frag").string(), 1, "empty.frag"},
+      {"check " + (dir_ / "garbage.frag").string(), 1, "not a text file"},
+      {"check " + (dir_ / "missing_include.frag").string(), 1, "missing_include.frag:1:10: error: cannot find include 'nowhere.glsl'"},
+      {"check " + (dir_ / "include_dir.frag").string(), 1, "include_dir.frag:1:"},
+      {"check " + (dir_ / "cycle.frag").string(), 1, "#include cycle"},
+      {"render " + good() + out + " --channel0 " + (dir_ / "corrupt.png").string(), 2, "corrupt.png"},
+  };
+  for (const Case& c : cases) {
+    const test::Outcome r = run(c.args);
+    EXPECT_EQ(r.status, c.status) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(lines(r.err), 1) << c.args << "\n" << r.err;
+  }
+  EXPECT_EQ(run("check " + (dir_ / "deep.frag").string()).status, 0);
+  const test::Outcome big_render = run("render " + (dir_ / "big.frag").string() + out + " --size 8x8");
+  EXPECT_EQ(big_render.status, 0) << big_render.err;
 }
 
 TEST_F(Cli, ShaderErrorDoesNotTouchAnExistingOutput) {

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# ctest's fuzz smoke run: builds the preprocessor's fuzz target into BUILD_DIR
+# and fuzzes it for 15 s from the seed corpus; any crash fails the test.
+# (scripts/fuzz runs the long version.)
+set -euo pipefail
+source_dir="$(cd "$(dirname "$0")" && pwd)"
+build_dir="$1"
+CXX=clang++ cmake -S "$source_dir" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build_dir" >/dev/null
+rm -rf "$build_dir/corpus" && cp -r "$source_dir/corpus" "$build_dir/corpus"
+cd "$build_dir"
+./source_fuzz -max_total_time=15 -max_len=4096 -timeout=10 corpus 2>&1 | tail -3
