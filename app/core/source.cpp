@@ -160,7 +160,9 @@ struct VersionInfo {
 };
 
 std::optional<VersionInfo> parse_version(const std::string& line) {
-  static const std::regex re(R"(^\s*#\s*version\s+(\d+)\s*([a-z]*)\s*(//.*)?$)");
+  // At most 9 digits: every version fits an int (a longer one is left for
+  // glslang to reject at its line; std::stoi would throw on it).
+  static const std::regex re(R"(^\s*#\s*version\s+(\d{1,9})\s*([a-z]*)\s*(//.*)?$)");
   std::smatch m;
   if (!std::regex_match(line, m, re)) return std::nullopt;
   return VersionInfo{std::stoi(m[1].str()), m[2].str()};

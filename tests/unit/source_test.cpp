@@ -239,6 +239,15 @@ TEST(Source, MissingOrMalformedChannelPragmaIsAnErrorAtItsLine) {
   }
 }
 
+// Found by the fuzzer (tests/fuzz): a #version number too large for an int
+// made std::stoi throw, and the program abort.
+TEST(Source, HugeVersionNumberDoesNotThrow) {
+  TempDir dir;
+  write_file(dir / "v.frag", "#version 3000000000000 \nvoid main() {}\n");
+  Source s;
+  EXPECT_NO_THROW(s = preprocess(dir / "v.frag", {}));
+}
+
 TEST(Source, UnreadableSceneIsOneError) {
   Source s = preprocess("/nonexistent/scene.frag", {});
   ASSERT_EQ(s.errors.size(), 1u);
