@@ -30,7 +30,6 @@ class Scene {
   ReloadStatus reload();
   // New -I/-D options (a view, a preset); they apply at the next reload().
   void set_options(SourceOptions options) { options_ = std::move(options); }
-  const SourceOptions& options() const { return options_; }
 
   const Program* program() const { return program_ ? &*program_ : nullptr; }
   const Source& source() const { return good_source_; }  // of the running program

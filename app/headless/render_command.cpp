@@ -78,9 +78,12 @@ int render_command(const RenderRequest& req) {
   }
 
   const SourceOptions options = with_view(req.source, req.view);
-  if (const Source plain = preprocess(req.scene, req.source); plain.ok())
-    if (auto problem = view_problem(plain, req.view))
-      return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
+  // Before validation, where a view the scene cannot show would stop at the
+  // wrapper's #error instead of this one line.
+  if (req.view != View::Picture)
+    if (const Source plain = preprocess(req.scene, req.source); plain.ok())
+      if (auto problem = view_problem(plain, req.view))
+        return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
   Diagnostics diags;
   check_scene(req.scene, options, &diags);
   print_diagnostics(diags);
