@@ -10,6 +10,7 @@
 #include "geometry.h"
 #include "gpu/egl_fixture.h"
 #include "gpu/probe.h"
+#include "march_probe.h"
 
 namespace rm::test {
 namespace {
@@ -86,20 +87,9 @@ std::vector<Ray> rays(int n, bool from_above = false) {
   return out;
 }
 
-struct Traced {
-  double t;
-  int steps, outcome;
-  bool ground;
-  double tolerance;
-};
-
 // Marches every ray through `map_body` with settings changed by `settings` (GLSL statements on `s`).
 std::vector<Traced> march(const std::string& map_body, const std::string& settings, const std::vector<Ray>& rs) {
-  const std::string prelude = "#include <rm/march.glsl>\n#include <rm/sdf.glsl>\nfloat map(vec3 p) { return " +
-                              map_body + "; }\nvec4 trace(vec3 ro, vec3 rd) {\n  RmMarchSettings s = rmMarchSettings();\n" +
-                              "  s.maxSteps = 400;\n  s.tMax = 20.0;\n" + settings +
-                              "\n  RmMarch m = rmMarch(ro, rd, s);\n"
-                              "  return vec4(m.t, float(m.steps), float(m.outcome) + (m.ground ? 10.0 : 0.0), m.tolerance);\n}\n";
+  const std::string prelude = march_prelude(map_body, "s.maxSteps = 400;\n  s.tMax = 20.0;\n" + settings);
   std::vector<glm::vec4> ps, qs;
   for (const Ray& r : rs) ps.emplace_back(glm::vec3(r.ro), 0), qs.emplace_back(glm::vec3(r.rd), 0);
   std::string error;
@@ -107,14 +97,9 @@ std::vector<Traced> march(const std::string& map_body, const std::string& settin
   EXPECT_TRUE(got) << error;
   std::vector<Traced> out;
   if (!got) return out;
-  for (const glm::vec4& v : *got) {
-    const int code = static_cast<int>(v.z);
-    out.push_back({v.x, static_cast<int>(v.y), code % 10, code >= 10, v.w});
-  }
+  for (const glm::vec4& v : *got) out.push_back(decode_trace(v));
   return out;
 }
-
-constexpr int kHit = 0, kMiss = 1, kOutOfSteps = 2;
 
 // Closest approach of a ray to a shape, by dense sampling.
 double closest_approach(const Shape& shape, const Ray& r) {
@@ -178,8 +163,9 @@ TEST_F(March, OverRelaxationNeverChangesWhatIsHit) {
       const auto relaxed = march(shape.glsl, std::string("s.omega = ") + omega + ";", rs);
       ASSERT_EQ(plain.size(), relaxed.size());
       for (size_t i = 0; i < rs.size(); ++i) {
-        if (plain[i].outcome != kOutOfSteps && relaxed[i].outcome != kOutOfSteps)
+        if (plain[i].outcome != kOutOfSteps && relaxed[i].outcome != kOutOfSteps) {
           EXPECT_EQ(plain[i].outcome, relaxed[i].outcome) << shape.glsl << " omega " << omega << " ray " << i;
+        }
       }
     }
   }

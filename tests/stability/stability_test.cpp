@@ -13,14 +13,13 @@
 #include "gpu/egl_fixture.h"
 #include "gpu/probe.h"
 #include "shaderlib/field_contract.h"
+#include "shaderlib/march_probe.h"
 
 namespace rm::test {
 namespace {
 
 using glm::dvec3;
 using glm::vec4;
-
-constexpr int kHit = 0, kOutOfSteps = 2;
 
 void report(const char* name, double worst, double bound) {
   std::printf("[stability] %s: worst %.3g (bound %.3g)\n", name, worst, bound);
@@ -39,16 +38,6 @@ std::vector<vec4> run(const std::string& prelude, const std::string& expression,
   return out;
 }
 
-// A march from P.xyz along Q.xyz with settings changed by `settings`:
-// (t, steps, outcome + 10 * ground, tolerance).
-std::string marcher(const std::string& map_body, const std::string& settings) {
-  return "#include <rm/march.glsl>\n#include <rm/normals.glsl>\n#include <rm/sdf.glsl>\n#include <rm/ops.glsl>\n"
-         "#include <rm/transforms.glsl>\nvec3 cell;\nfloat map(vec3 p) { return " + map_body + "; }\n"
-         "vec4 trace(vec3 ro, vec3 rd) {\n  RmMarchSettings s = rmMarchSettings();\n  " + settings + "\n"
-         "  RmMarch m = rmMarch(ro, rd, s);\n"
-         "  return vec4(m.t, float(m.steps), float(m.outcome) + (m.ground ? 10.0 : 0.0), m.tolerance);\n}\n";
-}
-
 class Stability : public EglTest {};
 
 // 1. Grazing rays against the analytic ground: exact t down to 1e-4 rad, and
@@ -64,12 +53,12 @@ TEST_F(Stability, GrazingRaysOnTheAnalyticGround) {
       want.push_back(angle > 0 && d.y < 0 ? height / -static_cast<double>(d.y) : -1.0);
     }
   }
-  const auto got = run(marcher("sdSphere(p - vec3(0.0, 50.0, 0.0), 1.0)",
+  const auto got = run(march_prelude("sdSphere(p - vec3(0.0, 50.0, 0.0), 1.0)",
                                "s.ground = true; s.groundHeight = 0.0; s.tMax = 1e6;"),
                        "trace(P.xyz, Q.xyz)", ro, rd);
   double worst = 0;
   for (size_t i = 0; i < got.size(); ++i) {
-    const int outcome = static_cast<int>(got[i].z) % 10;
+    const int outcome = decode_trace(got[i]).outcome;
     if (want[i] < 0 || want[i] > 1e6) {
       EXPECT_NE(outcome, kHit) << "ray " << i << " parallel to the ground hit it";
       continue;
@@ -94,10 +83,10 @@ TEST_F(Stability, GrazingRaysAndSilhouettesEndInBudget) {
     rd.emplace_back(d, 0.0f);
     want.push_back(0.5 / -static_cast<double>(d.y));
   }
-  const auto plane = run(marcher("p.y", ""), "trace(P.xyz, Q.xyz)", ro, rd);
+  const auto plane = run(march_prelude("p.y", ""), "trace(P.xyz, Q.xyz)", ro, rd);
   double worst = 0;
   for (size_t i = 0; i < plane.size(); ++i) {
-    ASSERT_EQ(static_cast<int>(plane[i].z) % 10, kHit) << "grazing ray " << i << " did not end in budget";
+    ASSERT_EQ(decode_trace(plane[i]).outcome, kHit) << "grazing ray " << i << " did not end in budget";
     const double sin_angle = -static_cast<double>(rd[i].y);
     worst = std::max(worst, std::abs(plane[i].x - want[i]) * sin_angle / plane[i].w);
   }
@@ -115,10 +104,10 @@ TEST_F(Stability, GrazingRaysAndSilhouettesEndInBudget) {
       hits.push_back(delta < 0);
     }
   }
-  const auto sphere = run(marcher("sdSphere(p, 1.0)", ""), "trace(P.xyz, Q.xyz)", sro, srd);
+  const auto sphere = run(march_prelude("sdSphere(p, 1.0)", ""), "trace(P.xyz, Q.xyz)", sro, srd);
   size_t wrong = 0;
   for (size_t i = 0; i < sphere.size(); ++i) {
-    const int outcome = static_cast<int>(sphere[i].z) % 10;
+    const int outcome = decode_trace(sphere[i]).outcome;
     if (outcome == kOutOfSteps || (outcome == kHit) != hits[i]) ++wrong;
   }
   report("rays past a silhouette (more than twice the tolerance): wrong or out of steps", double(wrong), 0);
@@ -258,7 +247,7 @@ TEST_F(Stability, FarFromTheOrigin) {
     }
     char centre_glsl[128];
     std::snprintf(centre_glsl, sizeof centre_glsl, "vec3(%.1f, %.1f, %.1f)", centre.x, centre.y, centre.z);
-    const std::string prelude = marcher(std::string("sdSphere(p - ") + centre_glsl + ", 1.0)", "") +
+    const std::string prelude = march_prelude(std::string("sdSphere(p - ") + centre_glsl + ", 1.0)", "") +
                                 "vec4 normalAt(vec3 ro, vec3 rd) { vec4 m = trace(ro, rd); "
                                 "return vec4(rmNormal(ro + rd * m.x, m.w), m.z); }\n";
     const auto traced = run(prelude, "trace(P.xyz, Q.xyz)", ro, rd);
@@ -271,7 +260,7 @@ TEST_F(Stability, FarFromTheOrigin) {
       const double b = glm::dot(oc, d), h = b * b - (glm::dot(oc, oc) - 1.0);
       if (h < 0.05) continue;  // a miss or a silhouette
       const double want = -b - std::sqrt(h);
-      ASSERT_EQ(static_cast<int>(traced[i].z) % 10, kHit) << "ray " << i << " at " << far;
+      ASSERT_EQ(decode_trace(traced[i]).outcome, kHit) << "ray " << i << " at " << far;
       const dvec3 n_true = glm::normalize(o + want * d - centre);
       const double cos = std::abs(glm::dot(d, n_true));
       worst_t = std::max(worst_t, std::abs(traced[i].x - want) / (traced[i].w / cos + 4 * spacing));
@@ -300,7 +289,7 @@ TEST_F(Stability, RepetitionFarAwayHasNoHoles) {
       ro.emplace_back(glm::vec3(eye), 0.0f);
       rd.emplace_back(glm::normalize(glm::vec3(dvec3(u(rng) * 0.4, u(rng) * 0.4, -1.0))), 0.0f);
     }
-    const auto got = run(marcher("sdSphere(opRepeat(p, vec3(1.0, 1.0, 1e9), cell), 0.49)", "s.maxSteps = 400;"),
+    const auto got = run(march_prelude("sdSphere(opRepeat(p, vec3(1.0, 1.0, 1e9), cell), 0.49)", "s.maxSteps = 400;"),
                          "trace(P.xyz, Q.xyz)", ro, rd);
     size_t holes = 0;
     double worst = 0;
@@ -318,7 +307,7 @@ TEST_F(Stability, RepetitionFarAwayHasNoHoles) {
           if (h > 0 && -b - std::sqrt(h) < want) want = -b - std::sqrt(h), margin = h;
         }
       if (want > 1e29 || margin < 0.01) continue;  // a miss or a silhouette
-      if (static_cast<int>(got[i].z) % 10 != kHit || got[i].x > want + 0.01) {
+      if (decode_trace(got[i]).outcome != kHit || got[i].x > want + 0.01) {
         ++holes;
         continue;
       }
@@ -356,13 +345,13 @@ TEST_F(Stability, OverRelaxationNeverTunnels) {
       {"smooth union", "opSmoothUnion(sdSphere(p - vec3(0.5, 0.0, 0.0), 0.6), sdBox(p + vec3(0.4, 0.0, 0.0), vec3(0.4)), 0.4)"},
   };
   for (const auto& [name, field] : fields) {
-    const auto plain = run(marcher(field, "s.omega = 1.0; s.maxSteps = 600;"), "trace(P.xyz, Q.xyz)", ro, rd);
+    const auto plain = run(march_prelude(field, "s.omega = 1.0; s.maxSteps = 600;"), "trace(P.xyz, Q.xyz)", ro, rd);
     size_t differing = 0;
     for (const char* omega : {"1.3", "1.6", "1.9"}) {
-      const auto relaxed = run(marcher(field, std::string("s.omega = ") + omega + "; s.maxSteps = 600;"),
+      const auto relaxed = run(march_prelude(field, std::string("s.omega = ") + omega + "; s.maxSteps = 600;"),
                                "trace(P.xyz, Q.xyz)", ro, rd);
       for (size_t i = 0; i < ro.size(); ++i) {
-        const int a = static_cast<int>(plain[i].z) % 10, b = static_cast<int>(relaxed[i].z) % 10;
+        const int a = decode_trace(plain[i]).outcome, b = decode_trace(relaxed[i]).outcome;
         EXPECT_NE(a, kOutOfSteps) << name << " ray " << i;
         if ((a == kHit) != (b == kHit)) ++differing;
       }
