@@ -31,14 +31,18 @@ void mainImage(out vec4 c, in vec2 f) {
 
 class Views : public ::testing::Test {
  protected:
-  // The scene rendered at 9x9 with `args`; the centre pixel's RGBA.
-  glm::vec4 centre(const std::string& scene, const std::string& args) {
+  // `scene` rendered to EXR with `args` (a --size and a view): its RGBA floats.
+  std::vector<float> render(const std::string& scene, const std::string& args) {
     write_file(dir_ / "scene.frag", scene);
     const auto out = dir_ / "view.exr";
-    const test::Outcome r = run_binary("render " + (dir_ / "scene.frag").string() + " -o " + out.string() +
-                                       " --size 9x9 " + args);
+    const test::Outcome r = run_binary("render " + (dir_ / "scene.frag").string() + " -o " + out.string() + " " + args);
     EXPECT_EQ(r.status, 0) << r.err;
-    const auto px = read_pixels(out);
+    return read_pixels(out);
+  }
+
+  // The scene rendered at 9x9 with `args`; the centre pixel's RGBA.
+  glm::vec4 centre(const std::string& scene, const std::string& args) {
+    const auto px = render(scene, "--size 9x9 " + args);
     if (px.size() != 9 * 9 * 4) return glm::vec4(NAN);
     const size_t i = (4 * 9 + 4) * 4;
     return {px[i], px[i + 1], px[i + 2], px[i + 3]};
@@ -64,12 +68,7 @@ TEST_F(Views, NormalsAndDepthShowThePrimaryHit) {
 }
 
 TEST_F(Views, StepsIsAHeatmapWithALegend) {
-  write_file(dir_ / "scene.frag", kSphere);
-  const auto out = dir_ / "steps.exr";
-  const test::Outcome r = run_binary("render " + (dir_ / "scene.frag").string() + " -o " + out.string() +
-                                     " --size 100x50 --view steps");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const auto px = read_pixels(out);
+  const auto px = render(kSphere, "--size 100x50 --view steps");
   ASSERT_EQ(px.size(), 100u * 50u * 4u);
   auto at = [&](int x, int y_from_top) { return glm::vec3(px[(y_from_top * 100 + x) * 4], px[(y_from_top * 100 + x) * 4 + 1], px[(y_from_top * 100 + x) * 4 + 2]); };
   // The legend along the bottom left runs from the coldest colour to white.
@@ -84,12 +83,7 @@ TEST_F(Views, NanMarksExactlyTheBadPixels) {
   const char* shader = "void mainImage(out vec4 c, in vec2 f) {\n"
                        "  float zero = iTime * 0.0;\n"
                        "  c = f.x < 4.5 ? vec4(zero / zero) : vec4(0.5, 0.5, 0.5, 1.0);\n}\n";
-  write_file(dir_ / "nan.frag", shader);
-  const auto out = dir_ / "nan.exr";
-  const test::Outcome r = run_binary("render " + (dir_ / "nan.frag").string() + " -o " + out.string() +
-                                     " --size 9x1 --view nan");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const auto px = read_pixels(out);
+  const auto px = render(shader, "--size 9x1 --view nan");
   ASSERT_EQ(px.size(), 9u * 4u);
   for (int x = 0; x < 9; ++x) {
     const glm::vec3 c(px[x * 4], px[x * 4 + 1], px[x * 4 + 2]);
