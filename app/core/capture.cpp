@@ -1,5 +1,6 @@
 #include "core/capture.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -47,18 +48,44 @@ bool rename_no_replace(const fs::path& from, const fs::path& to, int* err) {
   return true;
 }
 
+// Writes `bytes` to a new file and flushes it to the disk; 0 or an errno.
+int write_durably(const fs::path& path, const std::vector<unsigned char>& bytes) {
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) return errno;
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      close(fd);
+      return err;
+    }
+    done += static_cast<size_t>(n);
+  }
+  // Without fsync a crash after the rename can leave an empty file under the name.
+  if (fsync(fd) != 0) {
+    const int err = errno;
+    close(fd);
+    return err;
+  }
+  return close(fd) == 0 ? 0 : errno;
+}
+
 }  // namespace
 
 std::optional<std::string> check_output_path(const fs::path& path) {
   if (path.extension().empty()) return "'" + path.string() + "' has no extension to choose an image format (use .png or .exr)";
   auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) {
+  // write_image() encodes in memory, which some of OIIO's writers cannot.
+  if (!out || !out->supports("ioproxy")) {
     OIIO::geterror();  // clear OIIO's pending message
     return "'" + path.string() + "': unknown image format '" + path.extension().string() + "' (use .png or .exr)";
   }
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return "'" + path.string() + "': directory '" + dir.string() + "' does not exist";
+  if (!fs::exists(dir, ec)) return "'" + path.string() + "': directory '" + dir.string() + "' does not exist";
+  if (!fs::is_directory(dir, ec)) return "'" + path.string() + "': '" + dir.string() + "' is not a directory";
   if (access(dir.c_str(), W_OK) != 0) return "'" + path.string() + "': directory '" + dir.string() + "' is not writable";
   return std::nullopt;
 }
@@ -74,9 +101,13 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
   spec.attribute("Software", "raymarching " RM_VERSION);
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
 
-  const fs::path temp = temporary_sibling(path);
-  auto out = OIIO::ImageOutput::create(temp.string());
-  bool ok = out && out->open(temp.string(), spec);
+  // The file is encoded in memory first and then written with checked
+  // write() calls: OIIO's own file writers ignore a failing write (a full
+  // disk left a truncated PNG that looked written).
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  auto out = OIIO::ImageOutput::create(path.string());
+  bool ok = out && out->set_ioproxy(&memory) && out->open(path.string(), spec);
   if (ok) {
     if (as_float) {
       ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
@@ -91,8 +122,13 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
     ok = out->close() && ok;
   }
   if (!ok) {
-    *error = "cannot write '" + path.string() + "': " + (out ? out->geterror() : OIIO::geterror());
+    *error = "cannot encode '" + path.string() + "': " + (out ? out->geterror() : OIIO::geterror());
     if (error->back() == ' ') error->pop_back();
+    return std::nullopt;
+  }
+  const fs::path temp = temporary_sibling(path);
+  if (int err = write_durably(temp, encoded); err != 0) {
+    *error = "cannot write '" + path.string() + "': " + std::strerror(err);
     std::error_code ec;
     fs::remove(temp, ec);
     return std::nullopt;

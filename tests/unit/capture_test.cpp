@@ -3,6 +3,9 @@
 #include "core/capture.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include "headless/render_command.h"
 #include "support.h"
@@ -23,6 +26,8 @@ int files_in(const std::filesystem::path& dir) {
   return static_cast<int>(std::distance(std::filesystem::directory_iterator(dir), {}));
 }
 
+// The window names shots by the millisecond, so two in the same millisecond
+// ask for the same name: the second must get its own file.
 TEST(Capture, NeverOverwriteAddsANumberAndLeavesNoTemporaries) {
   TempDir dir;
   std::string error;
@@ -87,6 +92,9 @@ TEST(Capture, UnknownExtensionAndMissingDirectoryAreRefusedBeforeWriting) {
   EXPECT_NE(check_output_path(dir / "x.notanimage").value_or("").find("unknown image format"), std::string::npos);
   EXPECT_NE(check_output_path(dir / "noext").value_or("").find("no extension"), std::string::npos);
   EXPECT_NE(check_output_path(dir / "missing/x.png").value_or("").find("does not exist"), std::string::npos);
+  test::write_file(dir / "file", "");
+  EXPECT_NE(check_output_path(dir / "file/x.png").value_or("").find("'" + (dir / "file").string() + "' is not a directory"),
+            std::string::npos);
   EXPECT_FALSE(check_output_path(dir / "x.png"));
 }
 
@@ -96,6 +104,57 @@ TEST(Capture, FailedWriteLeavesNothingBehind) {
   EXPECT_FALSE(write_image("/proc/rm-test-shot.png", gradient(), {}, Overwrite::Replace, &error));
   EXPECT_NE(error.find("/proc/rm-test-shot.png"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists("/proc/rm-test-shot.png"));
+}
+
+// Noise compresses badly, so its PNG is far larger than the limit below.
+Image noise(int size) {
+  Image img{size, size, {}};
+  unsigned state = 12345;
+  for (int i = 0; i < size * size * 4; ++i) {
+    state = state * 1664525u + 1013904223u;
+    img.rgba.push_back(static_cast<float>(state >> 8) / 16777216.0f);
+  }
+  return img;
+}
+
+// A full disk, simulated with a file size limit: writes past it fail with
+// EFBIG part way through, as they would with ENOSPC. Only the soft limit is
+// lowered, so it can be put back.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    saved_handler_ = signal(SIGXFSZ, SIG_IGN);  // fail the write instead of killing the process
+    const rlimit limit{bytes, saved_.rlim_max};
+    setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    signal(SIGXFSZ, saved_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*saved_handler_)(int) = nullptr;
+};
+
+// The write fails with a message naming the file, the file already under the
+// final name keeps its old bytes, and no temporary is left.
+TEST(Capture, FullDiskPartWayLeavesTheOldFileAndNoTemporary) {
+  TempDir dir;
+  for (const fs::path& path : {dir / "png" / "shot.png", dir / "exr" / "shot.exr"}) {
+    test::write_file(path, "old picture");
+    std::string error;
+    std::optional<fs::path> written;
+    {
+      FileSizeLimit full_disk(16384);
+      written = write_image(path, noise(256), {}, Overwrite::Replace, &error);
+    }
+    EXPECT_FALSE(written) << path;
+    EXPECT_NE(error.find("cannot write '" + path.string() + "'"), std::string::npos) << error;
+    EXPECT_EQ(test::read_file(path), "old picture");
+    EXPECT_EQ(files_in(path.parent_path()), 1) << "a temporary was left in " << path.parent_path();
+  }
 }
 
 TEST(SequencePath, ExpandsOnePrintfCounter) {
