@@ -13,6 +13,8 @@
 
 #include "core/capture.h"
 #include "core/channels.h"
+#include "core/gl_census.h"
+#include "core/gl_debug.h"
 #include "core/views.h"
 #include "core/renderer.h"
 #include "core/scene.h"
@@ -94,8 +96,19 @@ class WindowApp {
     mouse_.move(cursor_pixels());
     if (use_.pointer || (use_.drag && mouse_.imouse().z > 0.0f)) dirty_ = true;
   }
-  // Resizes, uncovered windows: draw again.
+  // Uncovered windows: draw again.
   void on_refresh() { dirty_ = true; }
+  // Nothing is drawn while minimised, animated or not.
+  void on_iconify(bool iconified) {
+    iconified_ = iconified;
+    dirty_ = true;
+    if (options_.verbose) std::cerr << "raymarching: " << (iconified ? "minimised" : "restored") << '\n';
+  }
+  // A minimised window may report 0x0; frame() then draws nothing.
+  void on_resize(int width, int height) {
+    dirty_ = true;
+    if (options_.verbose) std::cerr << "raymarching: framebuffer " << width << "x" << height << '\n';
+  }
   void on_key(int key, int action, int mods);
 
  private:
@@ -123,9 +136,11 @@ class WindowApp {
     if (status == ReloadStatus::Swapped &&
         !channels_.use_scene_defaults(scene_.source().channels, options_.channels, &channel_error))
       std::cerr << "raymarching: error: " << channel_error << '\n';
-    if (options_.verbose)
+    if (options_.verbose) {
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
                 << scene_.generation() << '\n';
+      std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
+    }
     update_title(true);
   }
 
@@ -259,7 +274,10 @@ class WindowApp {
 
   // Draw this iteration? Always while the shader reads a running clock;
   // otherwise only after something it reads changed (or a screenshot is due).
-  bool redraw_needed() const { return dirty_ || shot_requested_ || (use_.time && !clock_.paused()); }
+  // Never while minimised: nobody sees it.
+  bool redraw_needed() const {
+    return shot_requested_ || (!iconified_ && (dirty_ || (use_.time && !clock_.paused())));
+  }
 
   const WindowOptions& options_;
   GLFWwindow* window_;
@@ -274,6 +292,7 @@ class WindowApp {
   int presented_generation_ = -1;
   bool shot_requested_ = false;
   bool quit_ = false;
+  bool iconified_ = false;
   InputUse use_;       // what the running program reads
   View view_ = View::Picture;
   long frames_drawn_ = 0;
@@ -321,6 +340,7 @@ int run_window(const WindowOptions& options) {
     return kExitUsage;
   }
   glfwMakeContextCurrent(window);
+  report_gl_errors();
   glfwSwapInterval(1);  // capped by vsync
   int status = kExitOk;
   {
@@ -330,7 +350,8 @@ int run_window(const WindowOptions& options) {
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { app_of(w)->on_cursor(); });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) { app_of(w)->on_key(key, action, mods); });
     glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { app_of(w)->on_refresh(); });
-    glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { app_of(w)->on_refresh(); });
+    glfwSetWindowIconifyCallback(window, [](GLFWwindow* w, int iconified) { app_of(w)->on_iconify(iconified); });
+    glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int width, int height) { app_of(w)->on_resize(width, height); });
     status = app.run();
   }
   glfwDestroyWindow(window);

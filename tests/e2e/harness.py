@@ -1,0 +1,67 @@
+"""What the window end-to-end tests share: pass/fail bookkeeping, waiting,
+xdotool, saving like an editor, and reading back screenshots."""
+import os
+import re
+import subprocess
+import time
+
+passed, failed = 0, 0
+
+
+def check(name, ok, detail=""):
+    global passed, failed
+    if ok:
+        passed += 1
+        print(f"ok   {name}", flush=True)
+    else:
+        failed += 1
+        print(f"FAIL {name} {detail}", flush=True)
+
+
+def summary():
+    """Prints the totals; returns the exit status for the test."""
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed or not passed else 0
+
+
+def wait_for(predicate, timeout=20.0, step=0.05):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(step)
+    return None
+
+
+def xdotool(*args):
+    return subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True).stdout.strip()
+
+
+def save_by_rename(path, text):
+    """As vim, VS Code and JetBrains save: a temporary renamed over the file."""
+    tmp = path + ".tmp~"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.rename(tmp, path)
+
+
+def save_in_place(path, text):
+    """As nano and many autosaves do: truncate and write the same file."""
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def metadata(image):
+    out = subprocess.run(["iinfo", "-v", image], capture_output=True, text=True).stdout
+    return dict(re.findall(r'^\s+([\w:]+): "(.*)"$', out, re.M))
+
+
+def mean_colour(image):
+    """The image's mean RGB in [0, 1], and its size as (width, height)."""
+    stats = subprocess.run(["oiiotool", "--stats", image], capture_output=True, text=True).stdout
+    avg = re.search(r"Stats Avg: ([0-9.]+) ([0-9.]+) ([0-9.]+)", stats)
+    size = re.search(r"(\d+) x\s*(\d+)", stats)
+    scale = 255.0 if "(of 255)" in stats else 1.0
+    colour = [float(v) / scale for v in avg.groups()] if avg else None
+    return colour, (int(size.group(1)), int(size.group(2))) if size else None
