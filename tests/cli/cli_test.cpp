@@ -132,7 +132,8 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
 // line on stderr naming the problem and the path, never a crash or a hang.
 TEST_F(Cli, BadShaderFilesGetOneClearLine) {
   write_file(dir_ / "empty.frag", "");
-  write_file(dir_ / "garbage.frag", std::string("\x7f" "ELF\x02\x01\x00\x00\xff\xfe binary", 19));
+  const char garbage[] = "\x7f" "ELF\x02\x01\x00\x00\xff\xfe binary";  // NULs inside: sized by the array
+  write_file(dir_ / "garbage.frag", std::string(garbage, sizeof garbage - 1));
   write_file(dir_ / "missing_include.frag", "#include \"nowhere.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
   std::filesystem::create_directories(dir_ / "adir");
   write_file(dir_ / "include_dir.frag", "#include \"adir\"\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
