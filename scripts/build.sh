@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Configures and builds into build/ (RelWithDebInfo unless BUILD_TYPE is set).
+# Configures and builds a CMake preset (CMakePresets.json):
+#   scripts/build.sh            default: build/, RelWithDebInfo (BUILD_TYPE overrides)
+#   scripts/build.sh sanitize   build-sanitize/, with AddressSanitizer and UBSan
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-RelWithDebInfo}" >/dev/null
-cmake --build build --parallel
+preset="${1:-default}"
+cmake --preset "$preset" ${BUILD_TYPE:+-DCMAKE_BUILD_TYPE="$BUILD_TYPE"} >/dev/null
+cmake --build --preset "$preset" --parallel
