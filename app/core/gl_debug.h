@@ -8,4 +8,7 @@ namespace rm {
 // Needs a current GL context; reports errors raised in it from now on.
 void report_gl_errors();
 
+// How many GL errors this process has reported (tests require none).
+int gl_errors_reported();
+
 }  // namespace rm

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "core/gl_debug.h"
+
 namespace rm {
 
 namespace {
@@ -59,6 +61,7 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
     auto out = std::unique_ptr<EglContext>(new EglContext());
     out->display_ = display;
     out->context_ = context;
+    report_gl_errors();
     return out;
   }
   *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";
