@@ -5,6 +5,16 @@
 namespace rm {
 
 std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
+  // OIIO's own words for these ("could not find a format reader") hide the cause.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    *error = "is a directory";
+    return std::nullopt;
+  }
+  if (!std::filesystem::exists(path, ec)) {
+    *error = "no such file";
+    return std::nullopt;
+  }
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string why = OIIO::geterror();

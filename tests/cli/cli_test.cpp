@@ -98,6 +98,7 @@ TEST_F(Cli, AccuracyNeedsAShaderlibScene) {
 TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
   const std::string g = good();
   const std::string out = (dir_ / "o.png").string();
+  write_file(dir_ / "a_file", "");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"render " + (dir_ / "missing.frag").string() + " -o " + out, "no such file"},
       {"render " + dir_.path().string() + " -o " + out, "is a directory"},
@@ -114,7 +115,12 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + (dir_ / "o.xyz").string(), "unknown image format"},
       {"render " + g + " -o " + (dir_ / "nodir/o.png").string(), "does not exist"},
       {"render " + g + " -o " + (dir_ / "frame.png").string() + " --frames 3", "counter"},
-      {"render " + g + " -o " + out + " --channel0 " + (dir_ / "none.png").string(), "--channel0"},
+      {"render " + g + " -o " + out + " --channel0 " + (dir_ / "none.png").string(), "--channel0 '" + (dir_ / "none.png").string() + "': no such file"},
+      // Unreadable even for root: a directory where the image should be.
+      {"render " + g + " -o " + out + " --channel1 " + dir_.path().string(), "--channel1 '" + dir_.path().string() + "': is a directory"},
+      // Unwritable even for root: /proc takes no new files; a file is no directory.
+      {"render " + g + " -o /proc/rm-cli-test.png", "'/proc/rm-cli-test.png'"},
+      {"render " + g + " -o " + (dir_ / "a_file/o.png").string(), "is not a directory"},
       {"render " + g + " -o " + out + " -D 9bad=1", "-D '9bad=1'"},
       {"render " + g, "--output"},
   };
