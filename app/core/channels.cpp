@@ -2,17 +2,14 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "core/source.h"
+
 namespace rm {
 
 std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
   // OIIO's own words for these ("could not find a format reader") hide the cause.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    *error = "is a directory";
-    return std::nullopt;
-  }
-  if (!std::filesystem::exists(path, ec)) {
-    *error = "no such file";
+  if (auto why = unreadable_because(path)) {
+    *error = *why;
     return std::nullopt;
   }
   auto in = OIIO::ImageInput::open(path.string());

@@ -1,5 +1,7 @@
 #include "core/source.h"
 
+#include <unistd.h>
+
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -382,17 +384,24 @@ const char* to_string(ShaderKind kind) {
   return "?";
 }
 
+std::optional<std::string> unreadable_because(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return "is a directory";
+  if (!fs::exists(path, ec)) return "no such file";
+  if (access(path.c_str(), R_OK) != 0) return "permission denied";
+  return std::nullopt;
+}
+
 FileSystem disk_file_system() {
   FileSystem disk;
   disk.read = [](const fs::path& path, std::string* error) -> std::optional<std::string> {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) {
-      *error = "is a directory";
+    if (auto why = unreadable_because(path)) {
+      *error = *why;
       return std::nullopt;
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-      *error = fs::exists(path, ec) ? "permission denied" : "no such file";
+      *error = "cannot open";
       return std::nullopt;
     }
     std::ostringstream ss;

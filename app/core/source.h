@@ -54,6 +54,10 @@ struct FileSystem {
 };
 FileSystem disk_file_system();
 
+// Why `path` cannot be read as a file ("no such file", "is a directory",
+// "permission denied"), or nullopt when it can. No file is opened.
+std::optional<std::string> unreadable_because(const fs::path& path);
+
 struct Source {
   std::string text;                // the final GLSL handed to glslang and the driver
   std::vector<fs::path> files;     // every file read (index = Origin::file); [0] is the scene
