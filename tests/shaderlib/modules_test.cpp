@@ -80,16 +80,18 @@ TEST_P(Module, DocumentsEveryFunction) {
     std::smatch m;
     if (std::regex_search(line, m, function)) {
       const std::string fn = m[1].matched ? m[1].str() : m[2].str();
-      if (fn.rfind("sd", 0) == 0)
+      if (fn.rfind("sd", 0) == 0) {
         EXPECT_TRUE(std::regex_search(previous, std::regex(R"(\b(exact|bound|approximate)\b)")) ||
                     std::regex_search(previous, function))
             << fn << ": the comment must give the distance class";
+      }
       // Overloads may share the comment above the first of them.
       std::smatch before;
       const bool overload = std::regex_search(previous, before, function) && before[1] == fn;
       EXPECT_TRUE(previous.rfind("//", 0) == 0 || overload) << fn << " has no comment";
-      if (seen.insert(fn).second)
+      if (seen.insert(fn).second) {
         EXPECT_TRUE(std::regex_search(provides, std::regex("\\b" + fn + "\\b"))) << fn << " is not under Provides";
+      }
     }
     previous = line;
   }

@@ -133,8 +133,9 @@ TEST_P(Singular, StaysFinite) {
   ASSERT_TRUE(got) << error;
   const glm::vec4 v = (*got)[0];
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(std::isfinite(v[i])) << c.expression << " component " << i << " = " << v[i];
-  if (!std::isnan(c.expected.x))
+  if (!std::isnan(c.expected.x)) {
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(v[i], c.expected[i], 1e-5) << c.expression << " component " << i;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Shaderlib, Singular, ::testing::ValuesIn(cases()),
