@@ -52,6 +52,28 @@ def save_in_place(path, text):
         f.write(text)
 
 
+def cpu_seconds(pid):
+    """CPU time the process has used so far: user + system, all threads."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def screenshots(out_path):
+    """The pictures the program reported writing ("screenshot: PATH" on its
+    stdout, captured in out_path), oldest first."""
+    with open(out_path) as f:
+        return [l[len("screenshot: "):] for l in f.read().splitlines() if l.startswith("screenshot: ")]
+
+
+def take_screenshot(window, out_path, timeout=20.0):
+    """Presses F12 in the window; returns the new picture's path, or None."""
+    before = len(screenshots(out_path))
+    xdotool("key", "--window", window, "F12")
+    new = wait_for(lambda: screenshots(out_path)[before:], timeout=timeout, step=0.02)
+    return new[0] if new else None
+
+
 def metadata(image):
     out = subprocess.run(["iinfo", "-v", image], capture_output=True, text=True).stdout
     return dict(re.findall(r'^\s+([\w:]+): "(.*)"$', out, re.M))

@@ -28,7 +28,8 @@ import sys
 import tempfile
 import time
 
-from harness import check, mean_colour, save_by_rename, save_in_place, summary, wait_for, xdotool
+from harness import (check, cpu_seconds, mean_colour, save_by_rename, save_in_place, screenshots, summary,
+                     take_screenshot, wait_for, xdotool)
 
 WINDOW = (96, 54)
 
@@ -70,7 +71,6 @@ class Session:
     """One window on one scene file, with its stdout and stderr in files."""
 
     def __init__(self, binary, work, scene_text):
-        self.work = work
         self.scene = os.path.join(work, "scene.frag")
         self.shots = os.path.join(work, "shots")
         os.mkdir(self.shots)
@@ -82,7 +82,6 @@ class Session:
             stdout=open(self.out_path, "w"), stderr=open(self.err_path, "w"), cwd=work)
         found = wait_for(lambda: xdotool("search", "--name", "scene.frag"), timeout=40)
         self.window = found.splitlines()[0] if found else None
-        self.shots_taken = 0
         self.log, self.log_read, self.reload_lines = open(self.err_path, "rb"), b"", 0
 
     def stderr(self):
@@ -108,25 +107,13 @@ class Session:
         lines = re.findall(r"gl objects: (.*)", self.stderr())
         return lines[-1] if lines else None
 
-    def shot(self, timeout=20.0):
-        """Presses F12; returns (path, seconds until it was written) or (None, None)."""
-        self.shots_taken += 1
-        start = time.monotonic()
-        xdotool("key", "--window", self.window, "F12")
-
-        def written():
-            with open(self.out_path) as f:
-                lines = [l for l in f.read().splitlines() if l.startswith("screenshot: ")]
-            return lines if len(lines) >= self.shots_taken else None
-
-        lines = wait_for(written, timeout=timeout, step=0.02)
-        if not lines:
-            return None, None
-        return lines[-1][len("screenshot: "):], time.monotonic() - start
+    def shot(self):
+        """Presses F12; returns the new picture's path, or None."""
+        return take_screenshot(self.window, self.out_path)
 
     def shows(self, rgb):
         """Takes a shot; true when its every pixel is `rgb` (mean within half a step)."""
-        path, _ = self.shot()
+        path = self.shot()
         colour, _ = mean_colour(path) if path else (None, None)
         return colour is not None and all(abs(c * 255 - v) < 0.5 for c, v in zip(colour, rgb)), colour
 
@@ -179,8 +166,7 @@ def autosave_storm(s, saves=200, seconds=2.0):
     pressed, latencies = [], []
 
     def answered():
-        with open(s.out_path) as f:
-            return f.read().count("screenshot: ")
+        return len(screenshots(s.out_path))
 
     base, reloads_before = answered(), s.reloads()
     start = time.monotonic()
@@ -197,7 +183,6 @@ def autosave_storm(s, saves=200, seconds=2.0):
     wait_for(lambda: answered() - base >= len(pressed), timeout=5)
     while len(latencies) < min(len(pressed), answered() - base):
         latencies.append(time.monotonic() - pressed[len(latencies)])
-    s.shots_taken = answered()
     print(f"     storm: {saves} saves in {took:.2f} s, {s.reloads() - reloads_before} reloads; F12 answered after "
           f"{', '.join(f'{l * 1000:.0f}' for l in latencies)} ms")
     check(f"{saves} saves in {took:.2f} s: every F12 during the storm is answered within 1 s",
@@ -224,21 +209,18 @@ def unwritable_shot_dir(s):
     shutil.rmtree(s.shots)
     with open(s.shots, "w") as f:  # a file where the directory was
         f.write("not a directory")
-    errors_before = s.stderr().count("screenshot:")
+    def shot_errors():
+        return [l for l in s.stderr().splitlines() if "error: screenshot:" in l]
+
+    errors_before = len(shot_errors())
     xdotool("key", "--window", s.window, "F12")
-    line = wait_for(lambda: [l for l in s.stderr().splitlines() if "error: screenshot:" in l][errors_before:])
+    line = wait_for(lambda: shot_errors()[errors_before:])
     check("unwritable shot directory: one clear line naming it", bool(line) and s.shots in line[0], line)
     check("the file where the directory was is untouched", open(s.shots).read() == "not a directory")
     os.remove(s.shots)
     os.mkdir(s.shots)
-    s.shots_taken = open(s.out_path).read().count("screenshot: ")
-    path, _ = s.shot()
+    path = s.shot()
     check("the session goes on: once writable, F12 writes again", path is not None and os.path.exists(path), path)
-
-
-def cpu_seconds(pid):
-    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime, all threads
 
 
 def cpu_over(s, seconds):
@@ -270,7 +252,7 @@ def minimise_and_resize(s):
     check("minimised and resized to the smallest sizes: the process lives", s.alive())
     sizes = re.findall(r"framebuffer (\d+)x(\d+)", s.stderr())
     print(f"     framebuffer sizes seen: {', '.join('x'.join(p) for p in sizes)}")
-    path, _ = s.shot()
+    path = s.shot()
     colour, size = mean_colour(path) if path else (None, None)
     check("after restoring, the picture is right at the window's size",
           size == WINDOW and colour and all(abs(c * 255 - v) < 1 for c, v in zip(colour, (51, 102, 153))),

@@ -19,7 +19,8 @@ import sys
 import tempfile
 import time
 
-from harness import check, mean_colour, metadata, save_by_rename, summary, wait_for, xdotool
+from harness import (check, cpu_seconds, mean_colour, metadata, save_by_rename, summary, take_screenshot,
+                     wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 SIZE = (320, 180)
@@ -63,14 +64,8 @@ def main():
     def stderr():
         return open(err_path).read()
 
-    shot_count = [0]
-
     def take_shot():
-        xdotool("key", "--window", window, "F12")
-        shot_count[0] += 1
-        lines = wait_for(lambda: [l for l in open(out_path).read().splitlines() if l.startswith("screenshot: ")]
-                         if len(re.findall("screenshot: ", open(out_path).read())) >= shot_count[0] else None)
-        return lines[-1][len("screenshot: "):] if lines else None
+        return take_screenshot(window, out_path)
 
     window = wait_for(lambda: xdotool("search", "--name", "scene.frag"))
     check("window opens", bool(window), stderr())
@@ -162,11 +157,10 @@ def scene_default_channel():
         return
     window = window.splitlines()[0]
     time.sleep(0.5)
-    xdotool("key", "--window", window, "F12")
-    line = wait_for(lambda: [l for l in open(out_path).read().splitlines() if l.startswith("screenshot: ")])
+    shot = take_screenshot(window, out_path)
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
-    colour, _ = mean_colour(line[0][len("screenshot: "):]) if line else (None, None)
+    colour, _ = mean_colour(shot) if shot else (None, None)
     check("window shows the scene's default channel (#pragma channel0)",
           colour is not None and all(abs(a - b) < 0.01 for a, b in zip(colour, [0.2, 0.6, 0.4])), colour)
 
@@ -177,11 +171,6 @@ STATIC = ("void mainImage(out vec4 c, in vec2 f) {\n  float v = 0.0;\n"
           "  c = vec4(f / iResolution.xy, fract(v), 1.0);\n}\n")
 ANIMATED = STATIC.replace("float(i));", "float(i) + iTime);")
 DRAGGABLE = STATIC.replace("fract(v)", "fract(v + iMouse.x)")
-
-
-def cpu_seconds(pid):
-    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime, all threads
 
 
 def idle_session(source, name, action=None):
