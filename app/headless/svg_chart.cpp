@@ -38,7 +38,7 @@ std::string escape(const std::string& s) {
 
 std::string number(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
+  std::snprintf(buf, sizeof buf, "%g", v == 0.0 ? 0.0 : v);  // a tick at -0 reads "-0"
   return buf;
 }
 
