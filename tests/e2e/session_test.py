@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A long window session, as a playground is really used: under Xvfb, one
 window, driven by file saves and xdotool.
-Run as: xvfb-run -a python3 session_test.py RAYMARCHING [--reloads N] [--no-rss]
+Run as: xvfb-run -a python3 session_test.py RAYMARCHING [--reloads N] [--no-rss] [--trace CSV]
 
 1. N reloads in a row (1000 by default), alternating good and broken shaders,
    each text new so every good one is compiled: the process lives, its RSS
@@ -104,7 +104,7 @@ class Session:
             return int(re.search(r"VmRSS:\s+(\d+) kB", f.read()).group(1))
 
     def last_census(self):
-        lines = re.findall(r"gl objects: (.*)", self.stderr())
+        lines = re.findall(r"gl objects: (.*)\n", self.stderr())  # whole lines: the log is being written
         return lines[-1] if lines else None
 
     def shot(self):
@@ -130,10 +130,27 @@ def colour_of(i):
     return (i % 256, 255 - i % 256, (7 * i) % 256)
 
 
-def reload_many(s, count, check_rss):
-    """count saves alternating good and broken, each waited for."""
+def object_counts(census):
+    """{"programs": 9, "textures": 4, ...} from a `gl objects:` line."""
+    return {name.strip(): int(n) for name, n in re.findall(r"([a-z ]+) (\d+)", census or "")}
+
+
+def write_trace(path, samples, rss_warm_kb, warm):
+    """The reload samples as CSV, for scripts/reliability-report's charts."""
+    with open(path, "w") as f:
+        f.write(f"reload,RSS (MB),bound (+10 MB),programs,all GL objects\n")
+        for reload, rss_kb, census in samples:
+            objects = object_counts(census)
+            f.write(f"{reload},{rss_kb / 1024:.3f},{rss_warm_kb / 1024 + 10:.3f},{objects.get('programs', 0)},"
+                    f"{sum(objects.values())}\n")
+
+
+def reload_many(s, count, check_rss, trace=None):
+    """count saves alternating good and broken, each waited for. With
+    `trace`, RSS and GL objects every 10 reloads go to that CSV file."""
     warm = min(100, count // 2)
     rss_warm = census_warm = None
+    samples = []
     start = time.monotonic()
     for i in range(count):
         text = solid(colour_of(i), f"save {i}") if i % 2 == 0 else broken(f"save {i}")
@@ -143,7 +160,11 @@ def reload_many(s, count, check_rss):
             return
         if i + 1 == warm:
             rss_warm, census_warm = s.rss_kb(), s.last_census()
+        if trace and (i + 1) % 10 == 0:
+            samples.append((i + 1, s.rss_kb(), s.last_census()))
     seconds = time.monotonic() - start
+    if trace:
+        write_trace(trace, samples, rss_warm, warm)
     last_good = count - 1 if count % 2 else count - 2
     check(f"{count} reloads alternating good and broken leave the process alive", s.alive())
     rss_end, census_end = s.rss_kb(), s.last_census()
@@ -264,6 +285,7 @@ def main():
     parser.add_argument("binary")
     parser.add_argument("--reloads", type=int, default=1000)
     parser.add_argument("--no-rss", action="store_true")
+    parser.add_argument("--trace", metavar="CSV", help="write RSS and GL objects every 10 reloads here")
     args = parser.parse_args()
     if args.reloads < 40:
         parser.error("--reloads needs at least 40: the program cache (8) must fill before counting")
@@ -275,7 +297,7 @@ def main():
         if not s.window:
             return
         check("first program presented", wait_for(lambda: "presented generation 1" in s.stderr(), timeout=40))
-        for step in (lambda: reload_many(s, args.reloads, not args.no_rss), lambda: autosave_storm(s),
+        for step in (lambda: reload_many(s, args.reloads, not args.no_rss, args.trace), lambda: autosave_storm(s),
                      lambda: delete_and_recreate(s), lambda: unwritable_shot_dir(s),
                      lambda: minimise_and_resize(s)):
             if not s.alive():

@@ -1,0 +1,51 @@
+// Draws columns of a CSV as an SVG line chart with the project's own chart
+// (headless/svg_chart), for the reports in docs/.
+// Usage: csv_chart TITLE Y_LABEL COLUMN... < table.csv > chart.svg
+// The first column is x and names the x axis; each COLUMN becomes a curve.
+#include <algorithm>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "headless/svg_chart.h"
+
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::cerr << "usage: csv_chart TITLE Y_LABEL COLUMN... < table.csv > chart.svg\n";
+    return 2;
+  }
+  std::string line;
+  std::getline(std::cin, line);
+  const std::vector<std::string> header = split(line);
+  std::vector<rm::ChartSeries> series;
+  std::vector<size_t> columns;
+  for (int i = 3; i < argc; ++i) {
+    const auto it = std::find(header.begin(), header.end(), argv[i]);
+    if (it == header.end() || it == header.begin()) {
+      std::cerr << "csv_chart: no column '" << argv[i] << "' besides x\n";
+      return 2;
+    }
+    columns.push_back(static_cast<size_t>(it - header.begin()));
+    series.push_back({argv[i], {}});
+  }
+  while (std::getline(std::cin, line)) {
+    const std::vector<std::string> cells = split(line);
+    if (cells.size() != header.size()) continue;
+    for (size_t s = 0; s < columns.size(); ++s)
+      series[s].points.emplace_back(std::stod(cells[0]), std::stod(cells[columns[s]]));
+  }
+  std::cout << rm::svg_chart(argv[1], header[0], argv[2], series);
+  return 0;
+}
