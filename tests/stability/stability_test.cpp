@@ -411,7 +411,9 @@ TEST_F(Stability, RefractionThroughABall) {
     ro.emplace_back(static_cast<float>(b), 0.0f, 5.0f, 0.0f);
     rd.emplace_back(0.0f, 0.0f, -1.0f, 0.0f);
   }
-  const std::string prelude = R"(#include <rm/march.glsl>
+  const std::string prelude = R"(#define RM_NORMAL_TAPS 6
+#define RM_NORMAL_EPSILON 1e-3
+#include <rm/march.glsl>
 #include <rm/normals.glsl>
 #include <rm/optics.glsl>
 float map(vec3 p) { return length(p) - 1.0; }
