@@ -15,6 +15,9 @@
 // or -D on the command line); asking for nothing gives direct light only:
 //   RM_SHADOWS 1 hard, 2 soft (k h / t), 3 soft (iq's improved form)
 //   RM_SHADOW_SHARPNESS k of the soft shadows (default 16)
+//   RM_SHADOW_REACH d  how far shadow rays look for occluders (default
+//                  RM_MAX_DISTANCE); in an endless scene almost every long
+//                  shadow ray meets something: a short reach lets the sun in
 //   RM_AO          ambient occlusion
 //   RM_REFLECTIONS n  mirror bounces per pixel, for reflectivity > 0
 //   RM_REFRACTION n   segments through transparent solids per pixel (entering,
@@ -49,6 +52,10 @@
 // k of the soft shadows: larger is sharper.
 #ifndef RM_SHADOW_SHARPNESS
 #define RM_SHADOW_SHARPNESS 16.0
+#endif
+// How far shadow rays look for occluders.
+#ifndef RM_SHADOW_REACH
+#define RM_SHADOW_REACH RM_MAX_DISTANCE
 #endif
 // Supersampling: rmRenderPixel traces RM_SAMPLES x RM_SAMPLES rays per pixel.
 #ifndef RM_SAMPLES
@@ -100,7 +107,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
     vec3 toLight = rmLightDirection(l, p);
     if (dot(n, toLight) > 0.0) {  // the dark side needs no shadow ray
       vec3 from = p + n * offset;
-      float reach = min(rmLightDistance(l, p), RM_MAX_DISTANCE);
+      float reach = min(rmLightDistance(l, p), RM_SHADOW_REACH);
 #ifdef RM_BOUNDING_SPHERE
       // Nothing outside the bounds can cast a shadow: stop where the ray leaves them.
       vec2 span = rmRaySphere(from, toLight, RM_BOUNDING_SPHERE.xyz, RM_BOUNDING_SPHERE.w);

@@ -186,6 +186,31 @@ TEST_F(RunTime, ShadowRaysOnlyWhereTheSurfaceFacesTheLight) {
   for (size_t i = 64; i < 128; ++i) EXPECT_EQ(shadowed[i], plain[i]) << "dark pixel " << i << " traced a shadow ray";
 }
 
+// RM_SHADOW_REACH: a point on the floor under a sun straight overhead, with a
+// ball 3 units up. The ball shades the point while the reach passes it, and
+// no longer once the reach stops short of it (the point then looks as lit as
+// with no ball at all).
+TEST_F(EglTest, ShadowReachDecidesWhichOccludersCount) {
+  auto lit = [](const std::string& reach, bool ball) {
+    const std::string prelude = "#define RM_SHADOWS 1\n#define RM_LIGHT_COUNT 1\n" + reach + R"(
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+RmLight light(int i) { return rmDirectionalLight(vec3(0.0, 1.0, 0.0), vec3(1.0)); }
+float map(vec3 p) { return min(p.y, )" + (ball ? "sdSphere(p - vec3(0.0, 3.0, 0.0), 1.0)" : "1e9") + R"(); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
+)";
+    std::string error;
+    auto got = probe(prelude, "vec4(rmDirectLight(vec3(0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0), "
+                              "rmMaterial(vec3(0.5)), 1e-3), 0.0)", {glm::vec4(0)}, &error);
+    EXPECT_TRUE(got) << error;
+    return got ? (*got)[0].x : -1.0f;
+  };
+  const float open = lit("", false);
+  EXPECT_LT(lit("", true), 0.5f * open) << "the ball casts no shadow with the default reach";
+  EXPECT_LT(lit("#define RM_SHADOW_REACH 2.5\n", true), 0.5f * open) << "the ball is within the reach";
+  EXPECT_EQ(lit("#define RM_SHADOW_REACH 1.5\n", true), open) << "the ball is beyond the reach";
+}
+
 // RM_COUNT's rmEvaluations counts every map() call the library makes: with
 // every effect on, it equals the count the scene keeps inside map() itself.
 TEST_F(RunTime, CountingCoversEveryCall) {
