@@ -1,6 +1,6 @@
 // rm/texture.glsl: hashes, value noise, fbm, procedural patterns and triplanar
 // mapping (works with iChannelN).
-// Provides: rmHashUint, rmHash, rmHash3, rmValueNoise, rmFbm, rmChecker,
+// Provides: rmHashUint, rmLatticeBits, rmHash, rmHash3, rmValueNoise, rmFbm, rmChecker,
 //   rmGrid, rmStripes, rmTriplanar.
 // Needs: nothing.
 // Hashes work on the float's bits, so the same lattice point gives the same
@@ -18,24 +18,31 @@ uint rmHashUint(uint x) {
   return x;
 }
 
+// The bits of a lattice point, with -0 read as +0: they are one point, and
+// round(-0.3) gives -0. (Compilers fold `p + 0.0` to p, so it cannot do this.)
+uvec3 rmLatticeBits(vec3 p) {
+  uvec3 b = floatBitsToUint(p);
+  return b & ~(uvec3(equal(b, uvec3(0x80000000u))) << 31);
+}
+
 // Uniform value in [0, 1) from a float (use integer-valued inputs, e.g. floor(x)).
-float rmHash(float p) { return float(rmHashUint(floatBitsToUint(p + 0.0)) >> 8) * (1.0 / 16777216.0); }
+float rmHash(float p) { return float(rmHashUint(rmLatticeBits(vec3(p, 0.0, 0.0)).x) >> 8) * (1.0 / 16777216.0); }
 
 // Uniform value in [0, 1) from a vec2 lattice point.
 float rmHash(vec2 p) {
-  uvec2 b = floatBitsToUint(p + 0.0);  // + 0.0 turns -0 into +0
+  uvec2 b = rmLatticeBits(vec3(p, 0.0)).xy;
   return float(rmHashUint(b.x ^ rmHashUint(b.y)) >> 8) * (1.0 / 16777216.0);
 }
 
 // Uniform value in [0, 1) from a vec3 lattice point.
 float rmHash(vec3 p) {
-  uvec3 b = floatBitsToUint(p + 0.0);
+  uvec3 b = rmLatticeBits(p);
   return float(rmHashUint(b.x ^ rmHashUint(b.y ^ rmHashUint(b.z))) >> 8) * (1.0 / 16777216.0);
 }
 
 // Three independent uniform values in [0, 1) from a vec3.
 vec3 rmHash3(vec3 p) {
-  uvec3 b = floatBitsToUint(p + 0.0);
+  uvec3 b = rmLatticeBits(p);
   uint h = rmHashUint(b.x ^ rmHashUint(b.y ^ rmHashUint(b.z)));
   uvec3 v = uvec3(h, rmHashUint(h), rmHashUint(h + 0x9e3779b9u));
   return vec3(v >> 8) * (1.0 / 16777216.0);

@@ -72,7 +72,7 @@ TEST_P(Module, DocumentsEveryFunction) {
   const std::string& name = GetParam();
   const std::string text = module_text(name);
   const std::string provides = text.substr(text.find("// Provides:"), text.find("// Needs:") - text.find("// Provides:"));
-  static const std::regex function(R"(^(?:float|vec[234]|mat[234]|int|uint|bool|Rm\w+) (\w+)\(.*\) \{|^struct (\w+) \{)");
+  static const std::regex function(R"(^(?:float|[iub]?vec[234]|mat[234]|int|uint|bool|Rm\w+) (\w+)\(.*\) \{|^struct (\w+) \{)");
   std::istringstream lines(text);
   std::string line, previous;
   std::set<std::string> seen;

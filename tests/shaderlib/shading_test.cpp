@@ -209,5 +209,17 @@ TEST_F(Texture, TriplanarWeightsSumToOne) {
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[i][c], colour[i][c], 1e-5) << "normal " << i;
 }
 
+// -0 and +0 are one lattice point, so every hash must agree on them, also
+// when the zero is only known at run time (round(-0.3) gives -0): compilers
+// fold `x + 0.0` to x, so that cannot be the fix.
+TEST_F(Texture, HashesTreatMinusZeroAsZero) {
+  const std::vector<glm::vec4> minus_zero = {{-0.0f, -0.0f, -0.0f, -0.3f}}, zero = {{0.0f, 0.0f, 0.0f, 0.3f}};
+  const auto got = eval("#include <rm/texture.glsl>\n",
+                        "vec4(rmHash(P.x) - rmHash(Q.x), rmHash(P.xy) - rmHash(Q.xy), rmHash(P.xyz) - rmHash(Q.xyz), "
+                        "length(rmHash3(vec3(round(P.w))) - rmHash3(vec3(round(Q.w)))))",
+                        minus_zero, zero);
+  EXPECT_EQ(got[0], glm::vec4(0.0f));
+}
+
 }  // namespace
 }  // namespace rm::test
