@@ -2,7 +2,10 @@
 // opRepeat returns each point's cell id; the colour, the size and the spin of
 // every cube come from a hash of it. Drag with the left mouse button to move
 // the sun.
-#define RM_SHADOWS 2
+#define RM_SHADOWS 1  // a soft shadow reads the cell-border term in map() as a near miss
+// In an endless grid nearly every sun ray meets a cube far away: only the
+// cubes of the next two cells cast shadows.
+#define RM_SHADOW_REACH 4.0
 #define RM_FOG 0.07
 #define RM_MAX_STEPS 200
 #define RM_SCENE_BACKGROUND
