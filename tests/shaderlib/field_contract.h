@@ -30,7 +30,7 @@ struct Field {
   std::string name;
   std::string glsl;  // an expression of `p` (vec3, or vec2 when dims == 2)
   DistanceClass kind = DistanceClass::Exact;
-  std::function<double(glm::dvec3)> reference;  // exact classes
+  std::function<double(glm::dvec3)> reference = nullptr;  // exact classes
   double lipschitz = 1.0;
   bool bounded = true;     // the whole zero set lies inside the sampled box
   int dims = 3;
