@@ -3,7 +3,6 @@
 //   raymarching render SCENE -o F  render headless through EGL
 //   raymarching check SCENE [-E]   preprocess and validate only (-E: print the result)
 //   raymarching accuracy SCENE     what each accuracy knob costs and buys
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -13,6 +12,7 @@
 
 #include "core/data_paths.h"
 #include "core/diagnostics.h"
+#include "core/source.h"
 #include "core/views.h"
 #include "headless/accuracy_command.h"
 #include "headless/render_command.h"
@@ -85,10 +85,10 @@ std::chrono::system_clock::time_point parse_date(const std::string& text) {
 
 // A scene that cannot be read is an I/O error (exit 2), not a shader error.
 void require_readable_file(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw UsageError{"'" + path.string() + "': no such file"};
-  if (fs::is_directory(path, ec)) throw UsageError{"'" + path.string() + "': is a directory, not a shader file"};
-  if (access(path.c_str(), R_OK) != 0) throw UsageError{"'" + path.string() + "': permission denied"};
+  if (auto why = rm::unreadable_because(path)) {
+    if (*why == "is a directory") *why += ", not a shader file";
+    throw UsageError{"'" + path.string() + "': " + *why};
+  }
 }
 
 struct Common {
