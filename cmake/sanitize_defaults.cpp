@@ -1,9 +1,10 @@
 // Linked into every program when RM_SANITIZE is on, so a sanitized build runs
 // the same way from ctest, a shell or a script, without environment variables.
-// LeakSanitizer reads the suppressions below: they name the system libraries
-// whose one-time allocations (Mesa's driver and LLVM JIT, glslang's
-// process-wide tables, X11, fontconfig) live until exit by design. A leak in
-// our own code has none of these in its stack and is still reported.
+// When leak checking is turned on (see below), LeakSanitizer reads the
+// suppressions at the end: they name the system libraries whose one-time
+// allocations (Mesa's driver and LLVM JIT, X11, fontconfig) live until exit
+// by design. A leak in our own code has none of these in its stack and is
+// still reported.
 
 extern "C" {
 

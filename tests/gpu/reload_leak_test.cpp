@@ -1,6 +1,7 @@
 // Long sessions in-process: the GL census counts what the driver holds, and
 // many reloads alternating good and broken shaders leave no GL object behind.
-// (Under the sanitize preset, LeakSanitizer checks the heap of the same run.)
+// (Built with the sanitize preset and ASAN_OPTIONS=detect_leaks=1,
+// LeakSanitizer checks the heap of the same run.)
 #include <gtest/gtest.h>
 
 #include "core/channels.h"
