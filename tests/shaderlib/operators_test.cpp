@@ -173,8 +173,9 @@ TEST_F(Repetition, StaysExactFarFromTheOrigin) {
     for (size_t i = 0; i < xs.size(); ++i) {
       const double x = xs[i].x;
       const double cell = std::round(x / static_cast<double>(period));
-      const bool near_tie = std::abs(std::abs(x - period * cell) - period / 2.0) < tie_zone;
-      const double neighbour = cell + (x - period * cell > 0 ? 1.0 : -1.0);
+      const double offset = x - period * cell;  // from the cell's centre
+      const bool near_tie = std::abs(std::abs(offset) - period / 2.0) < tie_zone;
+      const double neighbour = cell + (offset > 0 ? 1.0 : -1.0);
       ties += near_tie;
       const bool right_cell = got[i].y == cell || (near_tie && got[i].y == neighbour);
       if (!right_cell) {
