@@ -2,11 +2,14 @@
 #pragma once
 #include <unistd.h>
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include <OpenImageIO/imageio.h>
 
 #include <atomic>
+#include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -59,16 +62,31 @@ inline std::vector<float> read_pixels(const fs::path& path) {
 }
 
 struct Outcome {
-  int status;      // exit status, -1 if the process did not exit normally
-  std::string err; // what it wrote to stderr
+  int status;          // exit status, -1 if the process did not exit normally
+  std::string err;     // what it wrote to stderr
+  double seconds = 0;  // wall-clock time it ran
+  long peak_kib = 0;   // its peak resident memory
 };
 
 // Runs the raymarching binary with `args` (shell syntax); stdout is dropped.
+// The shell execs the binary, so the time and memory measured are its own.
 inline Outcome run_binary(const std::string& args) {
   TempDir dir;
-  const std::string cmd = std::string(RM_BINARY) + " " + args + " 2> '" + (dir / "err.txt").string() + "' >/dev/null";
-  const int raw = std::system(cmd.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_file(dir / "err.txt")};
+  const std::string cmd = "exec " + std::string(RM_BINARY) + " " + args + " 2> '" + (dir / "err.txt").string() + "' >/dev/null";
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int raw = 0;
+  rusage usage{};
+  while (wait4(pid, &raw, 0, &usage) < 0 && errno == EINTR) {
+  }
+  Outcome out{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_file(dir / "err.txt")};
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.peak_kib = usage.ru_maxrss;
+  return out;
 }
 
 }  // namespace rm::test

@@ -2,7 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "core/source.h"
+#include "core/files.h"
 
 namespace rm {
 
@@ -19,6 +19,21 @@ std::optional<Image> load_channel_image(const std::filesystem::path& path, std::
     return std::nullopt;
   }
   const OIIO::ImageSpec& spec = in->spec();
+  // The header alone says how much memory reading would take: check it first.
+  if (spec.width < 1 || spec.height < 1 || spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
+    *error = "is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels; a channel image may be 1 to " +
+             std::to_string(kMaxImageSide) + " pixels a side";
+    return std::nullopt;
+  }
+  if (spec.depth > 1) {
+    *error = "is a volume image; a channel image is 2D";
+    return std::nullopt;
+  }
+  if (spec.nchannels < 1 || spec.nchannels > kMaxImageChannels) {
+    *error = "has " + std::to_string(spec.nchannels) + " channels; a channel image may have 1 to " +
+             std::to_string(kMaxImageChannels) + " (the first 4 are used)";
+    return std::nullopt;
+  }
   Image image;
   image.width = spec.width;
   image.height = spec.height;

@@ -15,8 +15,13 @@
 
 namespace rm {
 
-// Decodes an image file into RGBA; returns nullopt and sets *error on
-// failure. No GL needed.
+// The largest channel image read, checked in its header before any pixel is:
+// the largest texture llvmpipe takes, and more channels than any format uses.
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxImageChannels = 64;
+
+// Decodes an image file (a regular file) into RGBA; returns nullopt and sets
+// *error on failure. No GL needed.
 std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error);
 
 class Channels {

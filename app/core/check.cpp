@@ -1,11 +1,20 @@
 #include "core/check.h"
 
+#include <glslang/Include/intermediate.h>
+#include <glslang/MachineIndependent/localintermediate.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
+#include <pthread.h>
 
+#include <cstring>
+#include <functional>
 #include <mutex>
-#include <regex>
+#include <set>
 #include <sstream>
+#include <string_view>
+
+#include "core/lexing.h"
+#include "core/sandbox.h"
 
 namespace rm {
 
@@ -29,19 +38,64 @@ const char* token_spelling(const std::string& name) {
   return nullptr;
 }
 
+// A log line read from left to right. Compiler logs quote the user's code,
+// which can be any length, so they are read by hand rather than by std::regex
+// (whose matcher recurses once per character).
+class LogLine {
+ public:
+  explicit LogLine(std::string_view text) : text_(text) {}
+  // Takes `literal` if the line continues with it.
+  bool take(std::string_view literal) {
+    if (text_.substr(at_, literal.size()) != literal) return false;
+    at_ += literal.size();
+    return true;
+  }
+  // Takes a number of 1 to 9 digits.
+  std::optional<int> number() {
+    size_t end = at_;
+    while (end < text_.size() && end - at_ < 9 && lexing::is_digit(text_[end])) ++end;
+    if (end == at_) return std::nullopt;
+    const int value = std::stoi(std::string(text_.substr(at_, end - at_)));
+    at_ = end;
+    return value;
+  }
+  // Takes "error: " or "warning: ".
+  std::optional<Severity> severity(std::string_view error, std::string_view warning) {
+    if (take(error)) return Severity::Error;
+    if (take(warning)) return Severity::Warning;
+    return std::nullopt;
+  }
+  std::string rest() const { return std::string(text_.substr(at_)); }
+
+ private:
+  std::string_view text_;
+  size_t at_ = 0;
+};
+
 // glslang names no column. Where its message quotes a token, or names the
 // unexpected one, find that token on the line.
 int column_in_line(const std::string& message, const std::string& line_text) {
-  static const std::regex quoted(R"('([^']+)')");
-  static const std::regex unexpected(R"(unexpected ([A-Z_]+))");
-  std::smatch m;
   std::string needle;
-  const char* spelling = std::regex_search(message, m, unexpected) ? token_spelling(m[1].str()) : nullptr;
-  if (spelling) needle = spelling;
-  else if (std::regex_search(message, m, quoted)) needle = m[1].str();
+  const size_t unexpected = message.find("unexpected ");
+  if (unexpected != std::string::npos) {
+    size_t end = unexpected + 11;
+    while (end < message.size() && ((message[end] >= 'A' && message[end] <= 'Z') || message[end] == '_')) ++end;
+    if (const char* spelling = token_spelling(message.substr(unexpected + 11, end - unexpected - 11))) needle = spelling;
+  }
+  const size_t open = message.find('\'');
+  const size_t close = open == std::string::npos ? open : message.find('\'', open + 1);
+  if (needle.empty() && close != std::string::npos) needle = message.substr(open + 1, close - open - 1);
   if (needle.empty()) return 0;
   size_t at = line_text.find(needle);
   return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
+}
+
+// glslang's words for a parser stack that ran out, in words that say why.
+std::string plain_words(std::string message) {
+  if (message.size() >= 16 && message.compare(message.size() - 16, 16, "memory exhausted") == 0)
+    return "nested too deeply for glslang's parser (its stack holds 10000 levels of parentheses, "
+           "brackets and blocks)";
+  return message;
 }
 
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
@@ -61,17 +115,125 @@ Diagnostic locate(const Source& source, Severity severity, int final_line, int c
   return d;
 }
 
+// Runs `work` on a thread with a stack of `bytes`, and waits for it. Only the
+// pages the work touches are ever backed by memory.
+void run_with_stack(size_t bytes, const std::function<void()>& work) {
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_t thread;
+  auto call = [](void* w) -> void* {
+    (*static_cast<const std::function<void()>*>(w))();
+    return nullptr;
+  };
+  const bool started = pthread_attr_setstacksize(&attr, bytes) == 0 &&
+                       pthread_create(&thread, &attr, call, const_cast<std::function<void()>*>(&work)) == 0;
+  pthread_attr_destroy(&attr);
+  if (!started) {
+    work();  // no such stack to be had: run here, with the stack there is
+    return;
+  }
+  pthread_join(thread, nullptr);
+}
+
+// The deepest nesting of the program's tree (one level per operator in a
+// chain like x+x+x, per call, per parenthesis) and the final source line
+// where it is reached. (This file builds without RTTI, as Debian's glslang
+// does, so that it may derive from glslang's traverser.)
+class DeepestNode : public glslang::TIntermTraverser {
+ public:
+  int line = 0;
+  bool visitBinary(glslang::TVisit, glslang::TIntermBinary* node) override { return note(node); }
+  bool visitUnary(glslang::TVisit, glslang::TIntermUnary* node) override { return note(node); }
+  bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override { return note(node); }
+  bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override { return note(node); }
+  bool visitLoop(glslang::TVisit, glslang::TIntermLoop* node) override { return note(node); }
+
+ private:
+  bool note(TIntermNode* node) {
+    // Called before the node's own level is counted: depth + 1 is its level.
+    if (depth + 1 > maxDepth) line = node->getLoc().line;
+    return true;
+  }
+};
+
+// glslang's verdict as the sandbox sends it: "DEPTH LINE\n" (the tree's
+// deepest level and its final source line, 0 0 when it did not parse), then
+// the info log.
+std::string parse_in_child(const Source& source) {
+  std::string verdict;
+  // glslang's traversals recurse once per level of the tree, and a 30,000-term
+  // sum (60 KB of text) overflows an 8 MiB stack.
+  run_with_stack(kValidationStack, [&] {
+    glslang::TShader shader(EShLangFragment);
+    const char* text = source.text.c_str();
+    const int length = static_cast<int>(source.text.size());
+    shader.setStringsWithLengths(&text, &length, 1);
+    // No client API is set: plain GLSL semantics, as the GL driver applies them.
+    const bool parsed = shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+    glslang::TIntermediate* tree = parsed ? shader.getIntermediate() : nullptr;
+    DeepestNode deepest;
+    if (tree && tree->getTreeRoot()) tree->getTreeRoot()->traverse(&deepest);
+    verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog();
+  });
+  return verdict;
+}
+
+// glslang builds the built-in symbols of each #version once per process, in
+// about 80 ms, and keeps them. A sandboxed child would build them again every
+// time and throw them away, so the parent builds them first, from a shader
+// that holds nothing of the user's but the #version line preprocess() checked.
+void build_builtins_for(const std::string& version_line) {
+  static std::mutex mutex;
+  static std::set<std::string> built;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!built.insert(version_line).second) return;
+  glslang::TShader shader(EShLangFragment);
+  const std::string text = version_line + "\nvoid main() {}\n";
+  const char* chars = text.c_str();
+  shader.setStrings(&chars, 1);
+  shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+}
+
 }  // namespace
 
 Diagnostics validate(const Source& source) {
   ensure_glslang_initialized();
-  glslang::TShader shader(EShLangFragment);
-  const char* text = source.text.c_str();
-  const int length = static_cast<int>(source.text.size());
-  shader.setStringsWithLengths(&text, &length, 1);
-  // No client API is set: plain GLSL semantics, as the GL driver applies them.
-  shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
-  return map_log(shader.getInfoLog(), source, LogFormat::Glslang);
+  build_builtins_for(source.version_line);
+  SandboxLimits limits;
+  limits.seconds = kValidationSeconds;
+  limits.bytes = kValidationBytes;
+  const SandboxResult child = run_sandboxed([&] { return parse_in_child(source); }, limits);
+  if (child.status != SandboxResult::Status::Ok) {
+    Diagnostic d;
+    d.path = source.files.empty() ? std::string() : source.files.front().string();
+    switch (child.status) {
+      case SandboxResult::Status::TimedOut:
+        d.message = "glslang took more than " + std::to_string(static_cast<int>(kValidationSeconds)) +
+                    " s on this shader (a macro that expands without end?)";
+        break;
+      case SandboxResult::Status::OutOfMemory:
+        d.message = "glslang needed more than " + std::to_string(kValidationBytes >> 20) +
+                    " MiB for this shader (a macro that expands without end?)";
+        break;
+      default:
+        d.message = std::string("glslang crashed on this shader (") +
+                    (child.signal ? strsignal(child.signal) : "it exited with an error") + ")";
+    }
+    return {d};
+  }
+  const size_t newline = child.output.find('\n');
+  LogLine verdict(std::string_view(child.output).substr(0, newline));
+  const int depth = verdict.number().value_or(0);
+  const int deepest_line = verdict.take(" ") ? verdict.number().value_or(0) : 0;
+  Diagnostics out = map_log(newline == std::string::npos ? "" : child.output.substr(newline + 1), source,
+                            LogFormat::Glslang);
+  // The GL driver recurses over the same tree on the thread that draws, and
+  // Mesa overflows 8 MiB near 15,000 levels: what it may not take is refused.
+  if (depth > kMaxTreeDepth)
+    out.push_back(locate(source, Severity::Error, deepest_line, 0,
+                         "an expression nested " + std::to_string(depth) + " levels deep; at most " +
+                             std::to_string(kMaxTreeDepth) + " are allowed (the GL driver's compiler recurses on each)"));
+  return out;
 }
 
 std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags) {
@@ -90,46 +252,50 @@ std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics
 }
 
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format) {
-  // glslang: "ERROR: 0:12: 'foo' : undeclared identifier"
-  static const std::regex glslang_re(R"(^(ERROR|WARNING): \d+:(\d+): (.*)$)");
-  static const std::regex glslang_summary_re(R"(^(ERROR|WARNING): \d+ compilation errors?.*)");
-  // Mesa: "0:12(5): error: syntax error, unexpected ';'"
-  static const std::regex mesa_re(R"(^\d+:(\d+)\((\d+)\): (error|warning): (.*)$)");
-  // Mesa link errors carry no line: "error: unresolved reference to function `f'"
-  static const std::regex bare_re(R"(^(error|warning): (.*)$)");
-
   Diagnostics out;
+  bool nesting_exceeded = false;
   std::istringstream in(log);
-  std::string line;
-  while (std::getline(in, line)) {
-    while (!line.empty() && (line.back() == ' ' || line.back() == '\r')) line.pop_back();
-    if (line.empty()) continue;
-    std::smatch m;
+  std::string text;
+  while (std::getline(in, text)) {
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
+    if (text.empty()) continue;
     if (format == LogFormat::Glslang) {
-      if (std::regex_match(line, glslang_summary_re)) continue;
-      if (line.find("'' : compilation terminated") != std::string::npos) continue;  // follows a real error
-      if (std::regex_match(line, m, glslang_re)) {
-        int final_line = std::stoi(m[2].str());
-        std::string message = m[3].str();
-        Severity sev = m[1] == "ERROR" ? Severity::Error : Severity::Warning;
-        int col = column_in_line(message, source.final_line_text(final_line));
-        out.push_back(locate(source, sev, final_line, col, std::move(message)));
+      // "ERROR: 0:12: 'foo' : undeclared identifier", then "ERROR: 1 compilation errors. ..."
+      LogLine line(text);
+      const auto severity = line.severity("ERROR: ", "WARNING: ");
+      if (severity && line.number()) {
+        if (line.take(" compilation error")) continue;  // the summary
+        const auto final_line = line.take(":") ? line.number() : std::nullopt;
+        if (final_line && line.take(": ")) {
+          const std::string message = line.rest();
+          if (message == "'' : compilation terminated") continue;  // follows a real error
+          // At the end of the file, after #if nesting ran over, of course an #endif is missing.
+          if (nesting_exceeded && message == "'' : missing #endif") continue;
+          nesting_exceeded |= message.find("maximum nesting depth exceeded") != std::string::npos;
+          const int col = column_in_line(message, source.final_line_text(*final_line));
+          out.push_back(locate(source, *severity, *final_line, col, plain_words(message)));
+          continue;
+        }
+      }
+    } else {
+      // "0:12(5): error: syntax error, unexpected ';'"
+      LogLine line(text);
+      const bool located = line.number() && line.take(":");
+      const auto final_line = located ? line.number() : std::nullopt;
+      const auto column = final_line && line.take("(") ? line.number() : std::nullopt;
+      const auto severity = column && line.take("): ") ? line.severity("error: ", "warning: ") : std::nullopt;
+      if (severity) {
+        out.push_back(locate(source, *severity, *final_line, *column, line.rest()));
         continue;
       }
-    } else if (std::regex_match(line, m, mesa_re)) {
-      Severity sev = m[3] == "error" ? Severity::Error : Severity::Warning;
-      out.push_back(locate(source, sev, std::stoi(m[1].str()), std::stoi(m[2].str()), m[4].str()));
-      continue;
     }
     // Anything else (link errors, unknown formats) is kept, attributed to the scene.
+    // Mesa's link errors carry no line: "error: unresolved reference to function `f'".
     Diagnostic d;
     d.path = source.files.empty() ? std::string() : source.files.front().string();
-    if (std::regex_match(line, m, bare_re)) {
-      d.severity = m[1] == "error" ? Severity::Error : Severity::Warning;
-      d.message = m[2].str();
-    } else {
-      d.message = line;
-    }
+    LogLine line(text);
+    if (const auto severity = line.severity("error: ", "warning: ")) d.severity = *severity;
+    d.message = line.rest();
     out.push_back(std::move(d));
   }
   return out;

@@ -2,6 +2,7 @@
 // call, and maps compiler logs (glslang's and the driver's) back to the
 // user's files and lines.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -10,7 +11,17 @@
 
 namespace rm {
 
-// Runs glslang's parser and semantic checks on source.text (fragment stage).
+// How deep the program's tree may nest (operator chains, calls, parentheses)
+// before validate() refuses it. Real shaders stay far below it.
+constexpr int kMaxTreeDepth = 2000;
+// What glslang may spend on one shader: validation runs in a child process
+// (core/sandbox), on a stack of its own, and past these it is an error.
+constexpr double kValidationSeconds = 5.0;
+constexpr std::uintmax_t kValidationBytes = std::uintmax_t{512} << 20;
+constexpr size_t kValidationStack = size_t{256} << 20;
+
+// Runs glslang's parser and semantic checks on source.text (fragment stage)
+// within the limits above, and refuses a tree deeper than kMaxTreeDepth.
 Diagnostics validate(const Source& source);
 
 // What the compiler sees: source.text after glslang's own preprocessor, with

@@ -1,17 +1,56 @@
 #include "core/diagnostics.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace rm {
 
+namespace {
+
+// How many continuation bytes follow a UTF-8 lead byte; -1 if it is none.
+int continuation_bytes(unsigned char lead) {
+  if (lead >= 0xC2 && lead <= 0xDF) return 1;
+  if (lead >= 0xE0 && lead <= 0xEF) return 2;
+  if (lead >= 0xF0 && lead <= 0xF4) return 3;
+  return -1;
+}
+
+}  // namespace
+
+std::string printable(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7F) {
+      out += static_cast<char>(c);
+      continue;
+    }
+    if (c >= 0x80) {
+      const int more = continuation_bytes(c);
+      bool whole = more > 0 && i + static_cast<size_t>(more) < text.size();
+      for (int k = 1; whole && k <= more; ++k) whole = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+      if (whole) {
+        out.append(text.substr(i, static_cast<size_t>(more) + 1));
+        i += static_cast<size_t>(more);
+        continue;
+      }
+    }
+    char escaped[5];
+    std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+    out += escaped;
+  }
+  return out;
+}
+
 std::string Diagnostic::str() const {
-  std::string out = path.empty() ? std::string("raymarching") : path;
+  std::string out = path.empty() ? std::string("raymarching") : printable(path);
   if (line > 0) {
     out += ':' + std::to_string(line);
     if (column > 0) out += ':' + std::to_string(column);
   }
   out += severity == Severity::Error ? ": error: " : ": warning: ";
-  out += message;
+  out += printable(message);
   return out;
 }
 

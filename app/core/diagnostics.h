@@ -1,6 +1,7 @@
 // Compiler-style diagnostics: "path:line:col: error: message".
 #pragma once
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rm {
@@ -17,12 +18,16 @@ struct Diagnostic {
   int column = 0;    // 1-based; 0 when unknown
   std::string message;
 
-  std::string str() const;  // one line, in the form editors' quickfix lists parse
+  // One line, in the form editors' quickfix lists parse. Control characters
+  // and bytes that are not UTF-8 (glslang quotes them from the code) are
+  // written as \xNN, so the line stays one line and prints cleanly.
+  std::string str() const;
 };
 
 using Diagnostics = std::vector<Diagnostic>;
 
 int count_errors(const Diagnostics& diags);
+std::string printable(std::string_view text);  // text with \xNN for what str() escapes
 std::string join(const Diagnostics& diags);  // one diagnostic per line
 
 }  // namespace rm

@@ -1,11 +1,12 @@
 #include "core/source.h"
 
-#include <unistd.h>
-
-#include <fstream>
-#include <regex>
-#include <sstream>
+#include <algorithm>
+#include <string_view>
 #include <system_error>
+#include <unordered_map>
+
+#include "core/files.h"
+#include "core/lexing.h"
 
 namespace rm {
 
@@ -65,40 +66,20 @@ const char* const kLegacyPrelude = R"(#define texture2D texture
 #define textureCube texture
 #define varying in)";
 
-std::string strip_comments(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (size_t i = 0; i < text.size(); ++i) {
-    if (text.compare(i, 2, "//") == 0) {
-      while (i < text.size() && text[i] != '\n') ++i;
-      if (i < text.size()) out += '\n';
-    } else if (text.compare(i, 2, "/*") == 0) {
-      size_t end = text.find("*/", i + 2);
-      for (size_t j = i; j < std::min(end, text.size()); ++j)
-        if (text[j] == '\n') out += '\n';
-      i = end == std::string::npos ? text.size() : end + 1;
-    } else {
-      out += text[i];
-    }
+// Calls line(text, number) for each line of `text` (1-based numbers; "\r\n"
+// ends a line as "\n" does) until it returns false.
+template <typename Line>
+void for_each_line(std::string_view text, Line line) {
+  int number = 0;
+  size_t begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find('\n', begin);
+    const size_t next = end == std::string_view::npos ? text.size() : end + 1;
+    if (end == std::string_view::npos) end = text.size();
+    const size_t stop = end > begin && text[end - 1] == '\r' && end < text.size() ? end - 1 : end;
+    if (!line(text.substr(begin, stop - begin), ++number)) return;
+    begin = next;
   }
-  return out;
-}
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::string line;
-  for (size_t i = 0; i < text.size(); ++i) {
-    char c = text[i];
-    if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') continue;
-    if (c == '\n') {
-      lines.push_back(std::move(line));
-      line.clear();
-    } else {
-      line += c;
-    }
-  }
-  if (!line.empty()) lines.push_back(std::move(line));
-  return lines;
 }
 
 struct IncludeDirective {
@@ -113,44 +94,59 @@ struct ChannelPragma {
   int column = 0;  // 1-based column of "#"
 };
 
+// `"FILE"` (or `<FILE>` when angled brackets are allowed) and nothing after
+// it but a comment: the file's name, or nullopt.
+std::optional<std::string> quoted_name(std::string_view rest, bool allow_angled, bool* angled) {
+  if (rest.empty()) return std::nullopt;
+  const char close = rest[0] == '"' ? '"' : (allow_angled && rest[0] == '<') ? '>' : '\0';
+  if (!close) return std::nullopt;
+  const size_t end = rest.find(close, 1);
+  if (end == std::string_view::npos || end == 1 || !lexing::nothing_but_comment(rest.substr(end + 1)))
+    return std::nullopt;
+  *angled = close == '>';
+  return std::string(rest.substr(1, end - 1));
+}
+
 // `#pragma channelN "FILE"`: the scene's default image for iChannelN. Other
 // pragmas are the compiler's. *malformed is set for a channel pragma without
 // a quoted file name.
-std::optional<ChannelPragma> parse_channel_pragma(const std::string& line, bool* malformed) {
-  static const std::regex start(R"(^(\s*)#\s*pragma\s+channel([0-9]+)\b(.*)$)");
-  static const std::regex quoted(R"re(^\s*"([^"]+)"\s*(//.*)?$)re");
-  std::smatch m, q;
+std::optional<ChannelPragma> parse_channel_pragma(std::string_view line, bool* malformed) {
   *malformed = false;
-  if (!std::regex_match(line, m, start)) return std::nullopt;
+  auto d = lexing::directive(line);
+  constexpr std::string_view kChannel = "channel";
+  if (!d || d->name != "pragma" || d->rest.substr(0, kChannel.size()) != kChannel) return std::nullopt;
+  size_t digits_end = kChannel.size();
+  while (digits_end < d->rest.size() && lexing::is_digit(d->rest[digits_end])) ++digits_end;
+  const size_t digits = digits_end - kChannel.size();
+  if (digits == 0 || (digits_end < d->rest.size() && lexing::is_word_char(d->rest[digits_end]))) return std::nullopt;
   ChannelPragma pragma;
-  pragma.column = static_cast<int>(m[1].length()) + 1;
-  const std::string rest = m[3];
-  if (m[2].length() != 1 || m[2].str()[0] > '3' || !std::regex_match(rest, q, quoted)) {
+  pragma.column = static_cast<int>(d->hash) + 1;
+  const std::string_view rest = d->rest.substr(lexing::skip_blanks(d->rest, digits_end));
+  bool angled = false;
+  auto target = quoted_name(rest, /*allow_angled*/ false, &angled);
+  const char n = d->rest[kChannel.size()];
+  if (digits != 1 || n > '3' || !target) {
     *malformed = true;
     return pragma;
   }
-  pragma.channel = m[2].str()[0] - '0';
-  pragma.target = q[1];
+  pragma.channel = n - '0';
+  pragma.target = *target;
   return pragma;
 }
 
-std::optional<IncludeDirective> parse_include(const std::string& line, bool* malformed) {
-  static const std::regex re(R"(^\s*#\s*include\b\s*(.*)$)");
-  std::smatch m;
+std::optional<IncludeDirective> parse_include(std::string_view line, bool* malformed) {
   *malformed = false;
-  if (!std::regex_match(line, m, re)) return std::nullopt;
-  std::string rest = m[1].str();
-  size_t rest_pos = static_cast<size_t>(m.position(1));
-  static const std::regex target_re(R"re(^("([^"]+)"|<([^>]+)>)\s*(//.*)?$)re");
-  std::smatch t;
-  if (!std::regex_match(rest, t, target_re)) {
-    *malformed = true;
-    return IncludeDirective{false, rest, static_cast<int>(rest_pos) + 1};
-  }
+  auto d = lexing::directive(line);
+  if (!d || d->name != "include") return std::nullopt;
   IncludeDirective inc;
-  inc.angled = t[3].matched;
-  inc.target = inc.angled ? t[3].str() : t[2].str();
-  inc.column = static_cast<int>(rest_pos) + 1;
+  inc.column = static_cast<int>(d->rest_at) + 1;
+  auto target = quoted_name(d->rest, /*allow_angled*/ true, &inc.angled);
+  if (!target) {
+    *malformed = true;
+    inc.target = std::string(d->rest);
+    return inc;
+  }
+  inc.target = *target;
   return inc;
 }
 
@@ -161,13 +157,22 @@ struct VersionInfo {
   bool es() const { return profile == "es"; }
 };
 
-std::optional<VersionInfo> parse_version(const std::string& line) {
+std::optional<VersionInfo> parse_version(std::string_view line) {
+  auto d = lexing::directive(line);
+  if (!d || d->name != "version") return std::nullopt;
   // At most 9 digits: every version fits an int (a longer one is left for
-  // glslang to reject at its line; std::stoi would throw on it).
-  static const std::regex re(R"(^\s*#\s*version\s+(\d{1,9})\s*([a-z]*)\s*(//.*)?$)");
-  std::smatch m;
-  if (!std::regex_match(line, m, re)) return std::nullopt;
-  return VersionInfo{std::stoi(m[1].str()), m[2].str()};
+  // glslang to reject at its line).
+  const std::string_view rest = d->rest;
+  size_t at = 0;
+  while (at < rest.size() && lexing::is_digit(rest[at])) ++at;
+  if (at == 0 || at > 9) return std::nullopt;
+  VersionInfo version{std::stoi(std::string(rest.substr(0, at))), ""};
+  at = lexing::skip_blanks(rest, at);
+  const size_t profile_at = at;
+  while (at < rest.size() && rest[at] >= 'a' && rest[at] <= 'z') ++at;
+  version.profile = std::string(rest.substr(profile_at, at - profile_at));
+  if (!lexing::nothing_but_comment(rest.substr(at))) return std::nullopt;
+  return version;
 }
 
 class Preprocessor {
@@ -184,11 +189,6 @@ class Preprocessor {
   }
 
  private:
-  struct Line {
-    std::string text;
-    Origin origin;
-  };
-
   void error(int file, int line, int column, std::string message) {
     Diagnostic d;
     d.path = file >= 0 ? out_.files[static_cast<size_t>(file)].string() : std::string();
@@ -215,6 +215,10 @@ class Preprocessor {
   void include_file(const fs::path& path, int from_file, int from_line, int from_col) {
     std::string read_error;
     std::optional<std::string> bytes = fs_.read(path, &read_error);
+    if (bytes && total_bytes_ + bytes->size() > kMaxShaderBytes) {
+      read_error = "the scene with its includes would be " + over_the_limit(total_bytes_ + bytes->size()).substr(3);
+      bytes.reset();
+    }
     if (!bytes) {
       if (from_file < 0) {
         error(add_file(path), 0, 0, "cannot read scene: " + read_error);
@@ -223,8 +227,12 @@ class Preprocessor {
       }
       return;
     }
+    total_bytes_ += bytes->size();
     std::string text = std::move(*bytes);
     if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+    // GLSL counts form feed and vertical tab as blanks, but glslang rejects
+    // them: they become spaces, so lines and columns stay where they were.
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == '\f' || c == '\v'; }, ' ');
     if (text.find('\0') != std::string::npos) {
       int file = add_file(path);
       error(file, 0, 0, "not a text file (it contains NUL bytes)");
@@ -233,102 +241,102 @@ class Preprocessor {
 
     int file = add_file(path);
     stack_.push_back(file);
-    std::vector<std::string> lines = split_lines(text);
-    for (size_t i = 0; i < lines.size() && out_.ok(); ++i) {
-      int line_no = static_cast<int>(i) + 1;
-      const std::string& line = lines[i];
-      if (file == 0 && !version_ && (version_ = parse_version(line))) {
-        version_origin_ = Origin{file, line_no};
-        continue;  // re-emitted at the top by assemble()
-      }
-      bool malformed = false;
-      if (auto pragma = parse_channel_pragma(line, &malformed)) {
-        if (malformed) {
-          error(file, line_no, pragma->column, "#pragma channelN expects N in 0..3 and \"FILE\"");
-          break;
-        }
-        const fs::path image = fs::absolute(path.parent_path() / pragma->target).lexically_normal();
-        out_.watch.push_back(image);
-        if (!fs_.exists(image)) {
-          error(file, line_no, pragma->column, "cannot find channel image '" + pragma->target + "'");
-          break;
-        }
-        out_.channels[static_cast<size_t>(pragma->channel)] = image;
-        body_.push_back({"", Origin{file, line_no}});  // the driver never sees it; lines keep their numbers
-        continue;
-      }
-      auto inc = parse_include(line, &malformed);
-      if (!inc) {
-        body_.push_back({line, Origin{file, line_no}});
-        continue;
-      }
-      if (malformed) {
-        error(file, line_no, inc->column, "#include expects \"FILE\" or <FILE>");
-        break;
-      }
-      if (stack_.size() >= kMaxIncludeDepth) {
-        error(file, line_no, inc->column,
-              "#include nested too deeply (more than " + std::to_string(kMaxIncludeDepth) + " levels)");
-        break;
-      }
-      fs::path first_candidate;
-      auto target = resolve(*inc, path.parent_path(), &first_candidate);
-      if (!target) {
-        if (!first_candidate.empty()) out_.watch.push_back(first_candidate);
-        error(file, line_no, inc->column, "cannot find include '" + inc->target + "'");
-        break;
-      }
-      int existing = find_file(*target);
-      if (existing >= 0) {
-        for (size_t s = 0; s < stack_.size(); ++s) {
-          if (stack_[s] != existing) continue;
-          std::string chain;
-          for (size_t k = s; k < stack_.size(); ++k)
-            chain += out_.files[static_cast<size_t>(stack_[k])].filename().string() + " -> ";
-          error(file, line_no, inc->column,
-                "#include cycle: " + chain + target->filename().string());
-          break;
-        }
-        continue;  // already included once in this compile: nothing to add
-      }
-      out_.watch.push_back(*target);
-      include_file(*target, file, line_no, inc->column);
-    }
+    for_each_line(text, [&](std::string_view line, int line_no) { return take_line(path, file, line, line_no); });
     stack_.pop_back();
+  }
+
+  // One line of `file`: kept for the body, or a directive the host handles.
+  // false stops reading the file (after an error).
+  bool take_line(const fs::path& path, int file, std::string_view line, int line_no) {
+    if (!out_.ok()) return false;
+    if (file == 0 && !version_ && (version_ = parse_version(line))) {
+      version_origin_ = Origin{file, line_no};
+      return true;  // re-emitted at the top by assemble()
+    }
+    bool malformed = false;
+    if (auto pragma = parse_channel_pragma(line, &malformed)) {
+      if (malformed) {
+        error(file, line_no, pragma->column, "#pragma channelN expects N in 0..3 and \"FILE\"");
+        return false;
+      }
+      const fs::path image = fs::absolute(path.parent_path() / pragma->target).lexically_normal();
+      out_.watch.push_back(image);
+      if (!fs_.exists(image)) {
+        error(file, line_no, pragma->column, "cannot find channel image '" + pragma->target + "'");
+        return false;
+      }
+      out_.channels[static_cast<size_t>(pragma->channel)] = image;
+      add_body_line("", Origin{file, line_no});  // the driver never sees it; lines keep their numbers
+      return true;
+    }
+    auto inc = parse_include(line, &malformed);
+    if (!inc) {
+      add_body_line(line, Origin{file, line_no});
+      return true;
+    }
+    if (malformed) {
+      error(file, line_no, inc->column, "#include expects \"FILE\" or <FILE>");
+      return false;
+    }
+    if (stack_.size() >= kMaxIncludeDepth) {
+      error(file, line_no, inc->column,
+            "#include nested too deeply (more than " + std::to_string(kMaxIncludeDepth) + " levels)");
+      return false;
+    }
+    fs::path first_candidate;
+    auto target = resolve(*inc, path.parent_path(), &first_candidate);
+    if (!target) {
+      if (!first_candidate.empty()) out_.watch.push_back(first_candidate);
+      error(file, line_no, inc->column, "cannot find include '" + inc->target + "'");
+      return false;
+    }
+    auto existing = file_index_.find(target->string());
+    if (existing != file_index_.end()) {
+      for (size_t s = 0; s < stack_.size(); ++s) {
+        if (stack_[s] != existing->second) continue;
+        std::string chain;
+        for (size_t k = s; k < stack_.size(); ++k)
+          chain += out_.files[static_cast<size_t>(stack_[k])].filename().string() + " -> ";
+        error(file, line_no, inc->column, "#include cycle: " + chain + target->filename().string());
+        return false;
+      }
+      return true;  // already included once in this compile: nothing to add
+    }
+    out_.watch.push_back(*target);
+    include_file(*target, file, line_no, inc->column);
+    return true;
   }
 
   int add_file(const fs::path& path) {
     out_.files.push_back(path);
-    return static_cast<int>(out_.files.size()) - 1;
+    const int index = static_cast<int>(out_.files.size()) - 1;
+    file_index_.emplace(path.string(), index);
+    return index;
   }
 
-  int find_file(const fs::path& path) const {
-    for (size_t i = 0; i < out_.files.size(); ++i)
-      if (out_.files[i] == path) return static_cast<int>(i);
-    return -1;
+  void add_body_line(std::string_view text, Origin origin) {
+    body_ += text;
+    body_ += '\n';
+    body_map_.push_back(origin);
   }
 
-  void emit(const std::string& text, Origin origin) {
+  void emit(std::string_view text, Origin origin) {
     out_.text += text;
     out_.text += '\n';
     out_.line_map.push_back(origin);
   }
 
-  void emit_host(const char* block) {
-    std::istringstream in(block);
-    std::string line;
-    while (std::getline(in, line)) emit(line, Origin{kHostFile, ++host_lines_});
+  void emit_host(std::string_view block) {
+    for_each_line(block, [&](std::string_view line, int) {
+      emit(line, Origin{kHostFile, ++host_lines_});
+      return true;
+    });
   }
 
   void assemble() {
-    std::string body;
-    for (const auto& l : body_) body += l.text + '\n';
-    const std::string code = strip_comments(body);
-    static const std::regex main_re(R"(\bvoid\s+main\s*\()");
-    static const std::regex main_image_re(R"(\bmainImage\s*\()");
-    static const std::regex frag_color_re(R"(\bgl_FragColor\b)");
-    const bool has_main = std::regex_search(code, main_re);
-    const bool has_main_image = std::regex_search(code, main_image_re);
+    const std::string code = lexing::strip_comments(body_);
+    const bool has_main = lexing::has_call(code, "main", "void");
+    const bool has_main_image = lexing::has_call(code, "mainImage");
     const bool modern = version_ && version_->modern();
 
     if (has_main_image && !has_main) {
@@ -342,6 +350,8 @@ class Preprocessor {
       return;
     }
 
+    out_.text.reserve(body_.size() + 4096);
+    out_.line_map.reserve(body_map_.size() + 128);
     const bool keep_version = modern;
     out_.version_line = keep_version
         ? "#version " + std::to_string(version_->number) + (version_->profile.empty() ? "" : " " + version_->profile)
@@ -357,17 +367,21 @@ class Preprocessor {
       emit_host(kShadertoyPrelude);
     } else if (out_.kind == ShaderKind::Legacy) {
       emit_host(kLegacyPrelude);
-      if (std::regex_search(code, frag_color_re)) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
+      if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
     }
-    for (const auto& l : body_) emit(l.text, l.origin);
+    out_.text += body_;
+    out_.line_map.insert(out_.line_map.end(), body_map_.begin(), body_map_.end());
     if (out_.kind == ShaderKind::Shadertoy) emit_host(kShadertoyMain);
   }
 
   const SourceOptions& options_;
   const FileSystem& fs_;
   Source out_;
+  std::uintmax_t total_bytes_ = 0;  // of every file read, held to kMaxShaderBytes
+  std::unordered_map<std::string, int> file_index_;  // path -> index in out_.files
   std::vector<int> stack_;
-  std::vector<Line> body_;
+  std::string body_;             // the user's lines, includes expanded, each ending in '\n'
+  std::vector<Origin> body_map_;  // where each line of body_ came from
   std::optional<VersionInfo> version_;
   Origin version_origin_;
   int host_lines_ = 0;
@@ -384,33 +398,10 @@ const char* to_string(ShaderKind kind) {
   return "?";
 }
 
-std::optional<std::string> unreadable_because(const fs::path& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) return "is a directory";
-  if (!fs::exists(path, ec)) return "no such file";
-  if (access(path.c_str(), R_OK) != 0) return "permission denied";
-  return std::nullopt;
-}
-
 FileSystem disk_file_system() {
   FileSystem disk;
-  disk.read = [](const fs::path& path, std::string* error) -> std::optional<std::string> {
-    if (auto why = unreadable_because(path)) {
-      *error = *why;
-      return std::nullopt;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      *error = "cannot open";
-      return std::nullopt;
-    }
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) {
-      *error = "read error";
-      return std::nullopt;
-    }
-    return ss.str();
+  disk.read = [](const fs::path& path, std::string* error) {
+    return read_shader_file(path, error);
   };
   disk.exists = [](const fs::path& path) {
     std::error_code ec;

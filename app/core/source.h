@@ -47,16 +47,13 @@ struct SourceOptions {
 };
 
 // File access, injectable so tests and fuzzers can use an in-memory tree.
+// The disk's reads only regular files of at most kMaxShaderBytes (core/files.h).
 struct FileSystem {
   // The file's bytes, or nullopt with *error set ("no such file", "is a directory", ...).
   std::function<std::optional<std::string>(const fs::path&, std::string* error)> read;
   std::function<bool(const fs::path&)> exists;
 };
 FileSystem disk_file_system();
-
-// Why `path` cannot be read as a file ("no such file", "is a directory",
-// "permission denied"), or nullopt when it can. No file is opened.
-std::optional<std::string> unreadable_because(const fs::path& path);
 
 struct Source {
   std::string text;                // the final GLSL handed to glslang and the driver

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <tuple>
 
@@ -15,6 +14,7 @@
 #include "core/channels.h"
 #include "core/check.h"
 #include "core/diagnostics.h"
+#include "core/lexing.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "core/views.h"
@@ -81,13 +81,14 @@ FileSystem scene_without_defines(const fs::path& scene, std::vector<std::string>
   files.read = [disk, target, names](const fs::path& path, std::string* error) -> std::optional<std::string> {
     auto text = disk.read(path, error);
     if (!text || names.empty() || fs::weakly_canonical(path) != target) return text;
-    static const std::regex define_re(R"(^\s*#\s*define\s+(\w+))");
     std::istringstream in(*text);
     std::string line, out;
     while (std::getline(in, line)) {
-      std::smatch m;
-      if (std::regex_search(line, m, define_re) && std::find(names.begin(), names.end(), m[1]) != names.end())
-        line.clear();
+      if (auto d = lexing::directive(line); d && d->name == "define") {
+        size_t end = 0;
+        while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
+        if (std::find(names.begin(), names.end(), d->rest.substr(0, end)) != names.end()) line.clear();
+      }
       out += line + '\n';
     }
     return out;

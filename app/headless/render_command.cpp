@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <regex>
 
 #include "core/capture.h"
 #include "core/channels.h"
 #include "core/check.h"
+#include "core/lexing.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "headless/egl_context.h"
@@ -39,25 +39,20 @@ void show_progress(int done, int total) {
 
 std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& pattern, int index) {
   const std::string name = pattern.filename().string();
-  static const std::regex one_counter(R"(^([^%]|%%)*%0?\d{0,2}d([^%]|%%)*$)");
-  if (!std::regex_match(name, one_counter)) return std::nullopt;
+  // Exactly one %d, %0Nd or %Nd (N up to two digits); %% is a literal %.
+  int counters = 0;
+  for (size_t i = 0; i < name.size(); ++i) {
+    if (name[i] != '%') continue;
+    if (++i < name.size() && name[i] == '%') continue;
+    if (i < name.size() && name[i] == '0') ++i;
+    for (int digits = 0; digits < 2 && i < name.size() && lexing::is_digit(name[i]); ++digits) ++i;
+    if (i >= name.size() || name[i] != 'd') return std::nullopt;
+    ++counters;
+  }
+  if (counters != 1) return std::nullopt;
   char buf[4096];
   std::snprintf(buf, sizeof buf, name.c_str(), index);
   return pattern.parent_path() / buf;
-}
-
-int check_command(const std::filesystem::path& scene, const SourceOptions& options, bool expand) {
-  Diagnostics diags;
-  const Source source = check_scene(scene, options, &diags);
-  print_diagnostics(diags);
-  if (count_errors(diags)) return kExitShaderError;
-  if (expand) {
-    auto text = expand_preprocessor(source, &diags);
-    print_diagnostics(diags);
-    if (!text) return kExitShaderError;
-    std::cout << *text;
-  }
-  return kExitOk;
 }
 
 int render_command(const RenderRequest& req) {

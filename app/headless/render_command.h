@@ -1,5 +1,5 @@
-// The headless commands: `render` (a still or a frame sequence through EGL)
-// and `check` (preprocess and validate only, no GL at all).
+// The headless renderer behind `render`: a still or a frame sequence through
+// EGL (its options are read in commands/render).
 #pragma once
 #include <array>
 #include <chrono>
@@ -29,8 +29,6 @@ struct RenderRequest {
 };
 
 int render_command(const RenderRequest& request);
-// `expand`: print what the compiler sees (glslang's preprocessed text) on stdout.
-int check_command(const std::filesystem::path& scene, const SourceOptions& options, bool expand = false);
 
 // Expands a printf-style frame counter ("frame_%04d.png"); nullopt if the
 // pattern has no single %d conversion.

@@ -4,8 +4,8 @@ driven by xdotool. Run as: xvfb-run -a python3 window_test.py RAYMARCHING
 
 Checks: the window opens; a mouse drag changes iMouse; F12 writes a PNG whose
 pixels match `render` of the same scene, time and mouse; an edit saved by
-rename shows up; a broken edit keeps the last good frame and reports
-file:line; the fix reloads; Q quits with status 0. A second window shows the
+rename shows up; a broken edit, and one that includes a FIFO, keeps the last
+good frame and reports file:line; the fix reloads; Q quits with status 0. A second window shows the
 image a scene names with #pragma channel0 when no --channel0 is given.
 Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
@@ -112,6 +112,17 @@ def main():
     shot = take_shot()
     ok, detail = matches_render(shot, good_copy, work)
     check("broken edit keeps the last good frame", ok, detail)
+
+    # An include that is a named pipe would block a read for ever: it is
+    # refused by what it is, and the window goes on with the last good frame.
+    os.mkfifo(os.path.join(work, "pipe.glsl"))
+    save_by_rename(scene, '#include "pipe.glsl"\n' + SCENE_V1)
+    check("an include that is a FIFO is refused, not read",
+          wait_for(lambda: re.search(re.escape(scene) + r":1:10: error: cannot read include .*pipe\.glsl': "
+                                     r"is a named pipe \(FIFO\)", stderr())), stderr())
+    shot = take_shot()
+    ok, detail = matches_render(shot, good_copy, work)
+    check("... and the last good frame stays", ok, detail)
     before = os.listdir(shots)
 
     save_by_rename(scene, SCENE_V1)

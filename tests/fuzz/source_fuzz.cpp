@@ -11,13 +11,18 @@
 // The first chunk is /fuzz/scene.frag; each "@@ NAME" line starts the file
 // /fuzz/NAME. <rm/...> resolves in /fuzz (the shaderlib root), -I is /fuzz/inc.
 // Checked: no crash or hang, and every line of the output maps back to a file
-// the preprocessor read (or to the host).
+// the preprocessor read (or to the host). Built as check_fuzz (RM_FUZZ_CHECK),
+// the result also goes through glslang's validation and the log mapping, and
+// every diagnostic must print as one line.
 #include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <string>
 
 #include "core/source.h"
+#ifdef RM_FUZZ_CHECK
+#include "core/check.h"
+#endif
 
 namespace {
 
@@ -77,6 +82,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (lines != source.line_map.size()) std::abort();
     for (const rm::Origin& o : source.line_map)
       if (o.file >= static_cast<int>(source.files.size())) std::abort();
+#ifdef RM_FUZZ_CHECK
+    for (const rm::Diagnostic& d : rm::validate(source))
+      if (d.str().find('\n') != std::string::npos) std::abort();
+#endif
   }
   return 0;
 }

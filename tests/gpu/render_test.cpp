@@ -1,6 +1,7 @@
 // Headless rendering through EGL: inputs reach the shader exactly, every kind
 // of shader renders, failures keep the last good program, tiles match.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -134,6 +135,37 @@ TEST_F(Gpu, BrokenReloadKeepsTheLastGoodProgram) {
   EXPECT_EQ(scene.reload(), ReloadStatus::Swapped);
   EXPECT_TRUE(scene.diagnostics().empty());
   EXPECT_EQ(render(scene, {2, 2}).pixel(0, 0)[2], 1.0f);
+}
+
+// The window reloads through Scene: a save that includes a FIFO or a device,
+// grows past the size limit, nests too deep or expands a macro without end
+// fails with its reason, and the last good picture stays.
+TEST_F(Gpu, PathologicalSavesKeepTheLastGoodProgram) {
+  const auto path = dir_ / "scene.frag";
+  ASSERT_EQ(mkfifo((dir_ / "fifo.glsl").c_str(), 0644), 0);
+  write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 1.0, 0.0, 1.0); }\n");
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  std::string sum = "x";
+  for (int i = 0; i < 20000; ++i) sum += "+x";
+  std::string bomb = "float x = 1.0;\n#define A0 x+x\n";
+  for (int i = 1; i <= 25; ++i)
+    bomb += "#define A" + std::to_string(i) + " A" + std::to_string(i - 1) + "+A" + std::to_string(i - 1) + "\n";
+  const std::vector<std::pair<std::string, std::string>> saves = {
+      {"#include \"fifo.glsl\"\n", "is a named pipe (FIFO)"},
+      {"#include \"/dev/zero\"\n", "is a character device"},
+      {std::string(16u << 20, ' ') + "\n", "over the 16 MiB limit"},
+      {"float x = 1.0;\nfloat y = " + sum + ";\n", "levels deep"},
+      {bomb + "float y = A25;\n", "a macro that expands without end?"},
+  };
+  for (const auto& [prefix, says] : saves) {
+    write_file(path, prefix + "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0, 0.0, 0.0, 1.0); }\n");
+    EXPECT_EQ(scene.reload(), ReloadStatus::Failed) << says;
+    ASSERT_FALSE(scene.diagnostics().empty()) << says;
+    EXPECT_NE(scene.diagnostics()[0].str().find(says), std::string::npos) << scene.diagnostics()[0].str();
+    EXPECT_EQ(render(scene, {2, 2}).pixel(0, 0)[1], 1.0f) << says;  // still green
+  }
+  EXPECT_EQ(scene.generation(), 1);
 }
 
 TEST_F(Gpu, FailureOnlyTheDriverFindsKeepsTheLastGoodProgram) {

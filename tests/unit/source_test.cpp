@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 
+#include "core/files.h"
 #include "support.h"
 
 namespace rm {
@@ -252,6 +255,73 @@ TEST(Source, UnreadableSceneIsOneError) {
   Source s = preprocess("/nonexistent/scene.frag", {});
   ASSERT_EQ(s.errors.size(), 1u);
   EXPECT_EQ(s.errors[0].str(), "/nonexistent/scene.frag: error: cannot read scene: no such file");
+}
+
+// Directives are read by core/lexing, not std::regex: the spellings the
+// regexes took, and a line too long for them (it overflowed the stack).
+TEST(Source, DirectivesInEverySpellingAndAnyLength) {
+  TempDir dir;
+  write_file(dir / "a.glsl", "float a_marker;\n");
+  write_file(dir / "b.glsl", "float b_marker;\n");
+  write_file(dir / "c.png", "");
+  write_file(dir / "scene.frag", "#version 300 es // a comment\n"
+                                 "  #  include \"a.glsl\"   // why\n"
+                                 "#include<b.glsl>\n"
+                                 "#pragma channel2 \"c.png\" // default\n"
+                                 "#pragma channels are not ours\n"
+                                 "\t\f\v#include \"a.glsl\"\n"
+                                 "float" + std::string(200000, ' ') + "wide;\n"
+                                 "void\n  main (\n) {}\n");
+  SourceOptions options;
+  options.include_dirs = {dir.path()};
+  Source s = preprocess(dir / "scene.frag", options);
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.version_line, "#version 300 es");
+  EXPECT_EQ(s.kind, ShaderKind::Complete);
+  EXPECT_EQ(origin_of(s, "a_marker").second, 1);
+  EXPECT_EQ(origin_of(s, "b_marker").second, 1);
+  EXPECT_EQ(s.channels[2], dir / "c.png");
+  EXPECT_EQ(origin_of(s, "#pragma channels").second, 5);
+  // Form feed and vertical tab, blanks to GLSL but not to glslang, are spaces.
+  EXPECT_EQ(s.text.find_first_of("\f\v"), std::string::npos);
+  EXPECT_EQ(origin_of(s, "wide;").second, 7);
+}
+
+TEST(Source, MalformedIncludesAndWordsThatOnlyLookLikeMain) {
+  TempDir dir;
+  write_file(dir / "a.frag", "#include lib.glsl\n" + std::string(kMain));
+  write_file(dir / "b.frag", "#include \"\"\n" + std::string(kMain));
+  write_file(dir / "c.frag", "#include \"x.glsl\" trailing\n" + std::string(kMain));
+  for (const char* name : {"a.frag", "b.frag", "c.frag"}) {
+    Source s = preprocess(dir / name, {});
+    ASSERT_EQ(s.errors.size(), 1u) << name;
+    EXPECT_EQ(s.errors[0].str(), (dir / name).string() + ":1:10: error: #include expects \"FILE\" or <FILE>");
+  }
+  write_file(dir / "d.frag", "void voidmain() {}\nvoid main_() {}\nint mainImages;\n");
+  EXPECT_FALSE(preprocess(dir / "d.frag", {}).ok());
+}
+
+// Files that are not regular, and files over the size limit, are refused by
+// what they are before a byte is read.
+TEST(Source, OnlyRegularFilesUpToTheLimitAreRead) {
+  TempDir dir;
+  ASSERT_EQ(mkfifo((dir / "fifo.glsl").c_str(), 0644), 0);
+  write_file(dir / "fifo.frag", "#include \"fifo.glsl\"\n" + std::string(kMain));
+  write_file(dir / "zero.frag", "\n#include \"/dev/zero\"\n" + std::string(kMain));
+  write_file(dir / "big.glsl", std::string(kMaxShaderBytes + 1, ' '));
+  write_file(dir / "big.frag", "#include \"big.glsl\"\n" + std::string(kMain));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"fifo.frag", ":1:10: error: cannot read include '" + (dir / "fifo.glsl").string() +
+                        "': is a named pipe (FIFO), not a regular file"},
+      {"zero.frag", ":2:10: error: cannot read include '/dev/zero': is a character device, not a regular file"},
+      {"big.frag", ":1:10: error: cannot read include '" + (dir / "big.glsl").string() + "': is " +
+                       std::to_string(kMaxShaderBytes + 1) + " bytes, over the 16 MiB limit for shader files"},
+  };
+  for (const auto& [name, says] : cases) {
+    Source s = preprocess(dir / name, {});
+    ASSERT_EQ(s.errors.size(), 1u) << name;
+    EXPECT_EQ(s.errors[0].str(), (dir / name).string() + says);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,32 @@
+#include "commands/check.h"
+
+#include <iostream>
+
+#include "core/check.h"
+#include "core/scene.h"
+
+namespace rm::cli {
+
+CheckCommand::CheckCommand(CLI::App& app)
+    : command_(app.add_subcommand("check", "Preprocess and validate SCENE with glslang; print diagnostics")) {
+  command_->add_option("scene", scene_, "Shader to check")->required()->type_name("SCENE");
+  command_->add_flag("-E,--expand", expand_, "Print what the compiler sees: the source after the preprocessor");
+  source_.add_to(*command_);
+}
+
+int CheckCommand::run() const {
+  require_readable_file(scene_);
+  Diagnostics diags;
+  const Source source = check_scene(scene_, source_.source(), &diags);
+  std::cerr << join(diags);
+  if (count_errors(diags)) return kExitShaderError;
+  if (expand_) {
+    auto text = expand_preprocessor(source, &diags);
+    std::cerr << join(diags);
+    if (!text) return kExitShaderError;
+    std::cout << *text;
+  }
+  return kExitOk;
+}
+
+}  // namespace rm::cli

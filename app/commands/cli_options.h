@@ -1,0 +1,49 @@
+// What every command reads from its command line in the same way: sizes,
+// numbers, the mouse, dates, -I/-D/--quality, --channelN, and the scene file.
+// A bad value throws UsageError, which main() prints as one line (exit 2).
+#pragma once
+#include <CLI/CLI.hpp>
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/source.h"
+
+namespace rm::cli {
+
+struct UsageError {
+  std::string message;
+};
+
+glm::ivec2 parse_size(const std::string& text, const char* option);
+double parse_number(const std::string& text, const std::string& what);
+glm::vec4 parse_mouse(const std::string& text);
+std::chrono::system_clock::time_point parse_date(const std::string& text);
+
+// A scene that cannot be read, or is over the size limit, is an I/O error
+// (exit 2), not a shader error.
+void require_readable_file(const std::filesystem::path& path);
+
+// -I DIR, -D NAME[=VALUE] and --quality, as a C compiler takes the first two.
+struct SourceFlags {
+  std::vector<std::string> includes;
+  std::vector<std::string> defines;
+  std::string quality;
+
+  void add_to(CLI::App& app);
+  SourceOptions source() const;
+};
+
+// --channel0..3 IMAGE.
+struct ChannelFlags {
+  std::array<std::string, 4> paths;
+
+  void add_to(CLI::App& app);
+  std::array<std::filesystem::path, 4> get() const;
+};
+
+}  // namespace rm::cli

@@ -1,0 +1,45 @@
+#include "commands/render.h"
+
+#include "core/views.h"
+#include "headless/render_command.h"
+
+namespace rm::cli {
+
+RenderCommand::RenderCommand(CLI::App& app)
+    : command_(app.add_subcommand("render", "Render SCENE headless through EGL (no display, no GPU needed)")) {
+  CLI::App& c = *command_;
+  c.add_option("scene", scene_, "Shader to render")->required()->type_name("SCENE");
+  c.add_option("-o,--output", out_, "Output image: .png (8-bit, clamped) or .exr (raw float)")->required()->type_name("OUT");
+  source_.add_to(c);
+  c.add_option("--size", size_, "Picture size in pixels")->type_name("WxH");
+  c.add_option("--time", time_, "iTime of the (first) frame in seconds")->type_name("T");
+  c.add_option("--frame", frame_, "iFrame of the (first) frame (default: time * fps)")->type_name("N")->check(CLI::NonNegativeNumber);
+  c.add_option("--frames", frames_, "Render COUNT frames; OUT needs a counter like frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
+  c.add_option("--fps", fps_, "Frames per second of a sequence")->type_name("F")->check(CLI::Range(0.001, 100000.0));
+  c.add_option("--mouse", mouse_, "iMouse as X,Y[,CX,CY] in pixels")->type_name("X,Y[,CX,CY]");
+  c.add_option("--date", date_, "iDate as local YYYY-MM-DDTHH:MM:SS[.sss] (default: now)")->type_name("DATE");
+  c.add_option("--view", view_, "A debug view instead of the picture: map() calls per pixel as a heatmap, "
+                                "normals, depth, or NaN/Inf pixels in magenta")
+      ->check(CLI::IsMember({"steps", "normals", "depth", "nan"}));
+  channels_.add_to(c);
+}
+
+int RenderCommand::run() const {
+  require_readable_file(scene_);
+  RenderRequest req;
+  req.scene = scene_;
+  req.source = source_.source();
+  req.out = out_;
+  req.size = parse_size(size_, "--size");
+  req.time = parse_number(time_, "--time");
+  if (frame_ >= 0) req.frame = frame_;
+  req.frames = frames_;
+  req.fps = fps_;
+  if (!view_.empty()) req.view = *view_from_string(view_);
+  if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);
+  if (!date_.empty()) req.date = parse_date(date_);
+  req.channels = channels_.get();
+  return render_command(req);
+}
+
+}  // namespace rm::cli

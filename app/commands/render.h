@@ -1,0 +1,26 @@
+// `raymarching render SCENE -o OUT`: a still or a frame sequence, headless
+// through EGL (headless/render_command does the rendering).
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "commands/cli_options.h"
+
+namespace rm::cli {
+
+class RenderCommand {
+ public:
+  explicit RenderCommand(CLI::App& app);  // adds the subcommand and its options
+  bool chosen() const { return command_->parsed(); }
+  int run() const;
+
+ private:
+  CLI::App* command_;
+  std::string scene_, out_, size_ = "640x360", time_ = "0", mouse_, date_, view_;
+  int frame_ = -1, frames_ = 0;
+  double fps_ = 60.0;
+  SourceFlags source_;
+  ChannelFlags channels_;
+};
+
+}  // namespace rm::cli

@@ -1,0 +1,39 @@
+#include "commands/window.h"
+
+#include "core/data_paths.h"
+#include "window/window_app.h"
+
+namespace rm::cli {
+
+WindowCommand::WindowCommand(CLI::App& app) {
+  app.add_option("scene", scene_, "Shader to open (default: the bundled default scene)")->type_name("SCENE");
+  source_.add_to(app);
+  app.add_option("--size", size_, "Window size in screen coordinates")->type_name("WxH");
+  app.add_option("--shot-dir", shot_dir_, "Directory for F12 screenshots")->type_name("DIR");
+  app.add_option("--shot-format", shot_format_, "Screenshot format")->check(CLI::IsMember({"png", "exr"}));
+  app.add_option("--shot-scale", shot_scale_, "Render screenshots at N times the window's pixels")->check(CLI::Range(1, 16));
+  app.add_option("--watch", watch_, "File watching backend")->check(CLI::IsMember({"auto", "inotify", "poll"}));
+  app.add_flag("-v,--verbose", verbose_, "Log reloads and presented frames to stderr");
+  channels_.add_to(app);
+}
+
+int WindowCommand::run() const {
+  WindowOptions opts;
+  opts.scene = scene_.empty() ? default_scene() : std::filesystem::path(scene_);
+  require_readable_file(opts.scene);
+  opts.source = source_.source();
+  opts.size = parse_size(size_, "--size");
+  opts.shot_dir = shot_dir_;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(opts.shot_dir, ec)) throw UsageError{"--shot-dir '" + shot_dir_ + "': not a directory"};
+  opts.shot_format = shot_format_;
+  opts.shot_scale = shot_scale_;
+  opts.channels = channels_.get();
+  opts.watch = watch_ == "poll"      ? WatchBackend::Poll
+               : watch_ == "inotify" ? WatchBackend::Inotify
+                                     : WatchBackend::Auto;
+  opts.verbose = verbose_;
+  return run_window(opts);
+}
+
+}  // namespace rm::cli

@@ -1,0 +1,24 @@
+// `raymarching [SCENE]`, the default command: the scene in a window, reloaded
+// on every save (window/window_app runs it).
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "commands/cli_options.h"
+
+namespace rm::cli {
+
+class WindowCommand {
+ public:
+  explicit WindowCommand(CLI::App& app);  // adds its options to the program's own
+  int run() const;
+
+ private:
+  std::string scene_, size_ = "800x450", shot_dir_ = ".", shot_format_ = "png", watch_ = "auto";
+  int shot_scale_ = 1;
+  bool verbose_ = false;
+  SourceFlags source_;
+  ChannelFlags channels_;
+};
+
+}  // namespace rm::cli

@@ -1,0 +1,104 @@
+#include "core/files.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace rm {
+
+namespace {
+
+// What a file is, in words, when it is not a regular file.
+std::optional<std::string> not_regular(mode_t mode) {
+  if (S_ISREG(mode)) return std::nullopt;
+  if (S_ISDIR(mode)) return "is a directory";
+  if (S_ISFIFO(mode)) return "is a named pipe (FIFO), not a regular file";
+  if (S_ISSOCK(mode)) return "is a socket, not a regular file";
+  if (S_ISCHR(mode)) return "is a character device, not a regular file";
+  if (S_ISBLK(mode)) return "is a block device, not a regular file";
+  return "is not a regular file";
+}
+
+std::string open_error(int error) {
+  switch (error) {
+    case ENOENT: return "no such file";
+    case ENOTDIR: return "a part of the path is not a directory";
+    case EACCES: return "permission denied";
+    case ELOOP: return "is a symbolic link loop";
+    case ENAMETOOLONG: return "the path is too long";
+    default: return std::strerror(error);
+  }
+}
+
+// Closes the descriptor on every path out of read_shader_file.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) close(fd);
+  }
+};
+
+}  // namespace
+
+std::string over_the_limit(std::uintmax_t bytes) {
+  return "is " + std::to_string(bytes) + " bytes, over the " + std::to_string(kMaxShaderBytes >> 20) +
+         " MiB limit for shader files";
+}
+
+std::optional<std::string> unreadable_because(const std::filesystem::path& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0) return open_error(errno);
+  if (auto what = not_regular(st.st_mode)) return what;
+  if (access(path.c_str(), R_OK) != 0) return open_error(errno);
+  return std::nullopt;
+}
+
+std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error) {
+  // O_NONBLOCK: opening a FIFO with no writer must not wait for one. What the
+  // descriptor is gets decided by fstat, so a file swapped in after a check
+  // by name is still caught.
+  Descriptor file{open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
+  if (file.fd < 0) {
+    *error = open_error(errno);
+    return std::nullopt;
+  }
+  struct stat st {};
+  if (fstat(file.fd, &st) != 0) {
+    *error = open_error(errno);
+    return std::nullopt;
+  }
+  if (auto what = not_regular(st.st_mode)) {
+    *error = *what;
+    return std::nullopt;
+  }
+  const auto size = static_cast<std::uintmax_t>(st.st_size);
+  if (size > kMaxShaderBytes) {
+    *error = over_the_limit(size);
+    return std::nullopt;
+  }
+  // Read to the end, not to the size fstat gave: a file still being written
+  // may have grown since. The limit still holds.
+  std::string bytes;
+  bytes.reserve(static_cast<size_t>(size));
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = read(file.fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      *error = std::string("read error: ") + std::strerror(errno);
+      return std::nullopt;
+    }
+    if (n == 0) break;
+    bytes.append(buffer, static_cast<size_t>(n));
+    if (bytes.size() > kMaxShaderBytes) {
+      *error = over_the_limit(bytes.size());
+      return std::nullopt;
+    }
+  }
+  return bytes;
+}
+
+}  // namespace rm

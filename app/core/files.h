@@ -1,0 +1,30 @@
+// Files as the host accepts them: regular files only, and shader text up to a
+// size limit. A FIFO, a device, a socket or a directory would block a read or
+// never end it, so each is refused by what it is, before anything is read.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace rm {
+
+// The most bytes one shader file, and one scene with all its includes, may
+// hold. No real shader comes near it (the largest examples are a few KB).
+constexpr std::uintmax_t kMaxShaderBytes = 16u << 20;
+
+// Why `path` cannot be read as a regular file ("no such file", "is a
+// directory", "is a named pipe (FIFO)", "is a character device", "is a
+// symbolic link loop", "permission denied", ...), or nullopt when it can.
+// Nothing is opened.
+std::optional<std::string> unreadable_because(const std::filesystem::path& path);
+
+// The bytes of the shader file at `path`: a regular file, refused by its
+// size when it holds more than kMaxShaderBytes. nullopt with *error set in
+// the words above.
+std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error);
+
+// "is 17000000 bytes, over the 16 MiB limit for shader files"
+std::string over_the_limit(std::uintmax_t bytes);
+
+}  // namespace rm

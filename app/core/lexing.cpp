@@ -1,0 +1,99 @@
+#include "core/lexing.h"
+
+#include <string>
+
+namespace rm::lexing {
+
+size_t skip_blanks(std::string_view text, size_t at) {
+  while (at < text.size() && is_blank(text[at])) ++at;
+  return at;
+}
+
+size_t skip_space(std::string_view text, size_t at) {
+  while (at < text.size() && is_space(text[at])) ++at;
+  return at;
+}
+
+std::optional<Directive> directive(std::string_view line) {
+  Directive d;
+  d.hash = skip_blanks(line, 0);
+  if (d.hash >= line.size() || line[d.hash] != '#') return std::nullopt;
+  const size_t name_at = skip_blanks(line, d.hash + 1);
+  size_t name_end = name_at;
+  while (name_end < line.size() && is_word_char(line[name_end])) ++name_end;
+  d.name = line.substr(name_at, name_end - name_at);
+  d.rest_at = skip_blanks(line, name_end);
+  d.rest = line.substr(d.rest_at);
+  return d;
+}
+
+bool nothing_but_comment(std::string_view rest) {
+  const size_t at = skip_blanks(rest, 0);
+  return at == rest.size() || rest.substr(at, 2) == "//";
+}
+
+namespace {
+
+// Calls visit(begin, end) for each word of `text`, in order, until it returns true.
+template <typename Visit>
+bool any_word(std::string_view text, Visit visit) {
+  size_t i = 0;
+  while (i < text.size()) {
+    if (!is_word_start(text[i])) {
+      // Digits that follow a letter belong to that word; here they start a number.
+      if (is_digit(text[i])) {
+        while (i < text.size() && is_word_char(text[i])) ++i;
+      } else {
+        ++i;
+      }
+      continue;
+    }
+    const size_t begin = i;
+    while (i < text.size() && is_word_char(text[i])) ++i;
+    if (visit(begin, i)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool has_word(std::string_view text, std::string_view word) {
+  return any_word(text, [&](size_t begin, size_t end) { return text.substr(begin, end - begin) == word; });
+}
+
+bool has_call(std::string_view text, std::string_view name, std::string_view after) {
+  std::string_view previous;
+  size_t previous_end = 0;
+  return any_word(text, [&](size_t begin, size_t end) {
+    const std::string_view word = text.substr(begin, end - begin);
+    const bool follows = after.empty() ||
+                         (previous == after && skip_space(text, previous_end) == begin && previous_end < begin);
+    previous = word;
+    previous_end = end;
+    if (word != name || !follows) return false;
+    const size_t next = skip_space(text, end);
+    return next < text.size() && text[next] == '(';
+  });
+}
+
+std::string strip_comments(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text.compare(i, 2, "//") == 0) {
+      while (i < text.size() && text[i] != '\n') ++i;
+      if (i < text.size()) out += '\n';
+    } else if (text.compare(i, 2, "/*") == 0) {
+      const size_t end = text.find("*/", i + 2);
+      const size_t stop = end == std::string_view::npos ? text.size() : end;
+      for (size_t j = i; j < stop; ++j)
+        if (text[j] == '\n') out += '\n';
+      i = end == std::string_view::npos ? text.size() : end + 1;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+}  // namespace rm::lexing

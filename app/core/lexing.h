@@ -1,0 +1,46 @@
+// Small, iterative readers of GLSL text: preprocessor directives, words and
+// blanks. The host reads lines of any length with these, never with
+// std::regex: libstdc++'s regex matcher recurses once per character, so a
+// line of 100,000 blanks overflows the stack.
+#pragma once
+#include <optional>
+#include <string_view>
+
+namespace rm::lexing {
+
+// Blanks inside a line, as the GLSL preprocessor counts them (not '\n').
+constexpr bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+constexpr bool is_space(char c) { return is_blank(c) || c == '\n'; }
+constexpr bool is_word_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
+constexpr bool is_word_char(char c) { return is_word_start(c) || is_digit(c); }
+
+// The first position at or after `at` that is not a blank.
+size_t skip_blanks(std::string_view text, size_t at);
+// The first position at or after `at` that is not blank or '\n'.
+size_t skip_space(std::string_view text, size_t at);
+
+// A preprocessor directive line: blanks, '#', blanks, a name, blanks, rest.
+struct Directive {
+  std::string_view name;  // "include", "version", "pragma", ...
+  std::string_view rest;  // after the name and the blanks that follow it
+  size_t hash = 0;        // offset of '#' in the line
+  size_t rest_at = 0;     // offset of rest in the line
+};
+std::optional<Directive> directive(std::string_view line);
+
+// Whether `rest` holds nothing more than blanks and perhaps a // comment.
+bool nothing_but_comment(std::string_view rest);
+
+// Whether `text` names `word` as a whole word.
+bool has_word(std::string_view text, std::string_view word);
+// Whether `text` has `name` as a whole word followed by '(' (blanks and
+// newlines between are allowed); with `after`, only where that word comes
+// just before it ("void main(").
+bool has_call(std::string_view text, std::string_view name, std::string_view after = {});
+
+// The text with its comments replaced by the newlines they held, so that
+// lines keep their numbers. An unterminated /* runs to the end.
+std::string strip_comments(std::string_view text);
+
+}  // namespace rm::lexing

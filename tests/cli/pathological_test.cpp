@@ -1,0 +1,207 @@
+// Pathological input, as editors, generators and accidents make it: each case
+// either works or fails with one line naming the problem, within 10 s and
+// 1 GB, and never crashes or hangs. A case that checks clean is rendered too,
+// so the GL driver sees it as the window would.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+constexpr size_t kTenMB = 10u << 20;
+constexpr double kMaxSeconds = 10.0;
+#ifdef RM_SANITIZED
+constexpr long kMaxKiB = 2l << 20;  // ASan's shadow memory and quarantine come on top
+#else
+constexpr long kMaxKiB = 1l << 20;
+#endif
+
+const std::string kMain = "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n";
+
+struct Case {
+  std::string name;     // the file in the test directory, or the arguments after the command
+  int status;           // of `check`; `render` must agree
+  std::string says;     // part of the one line on stderr (for status != 0)
+  bool render = true;   // also render it (cases whose check passes)
+};
+
+class Pathological : public ::testing::Test {
+ protected:
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  void expect_case(const std::string& command, const Case& c) {
+    SCOPED_TRACE(command + " " + c.name);
+    const test::Outcome r = test::run_binary(command + " " + c.name);
+    EXPECT_EQ(r.status, c.status) << r.err;
+    if (c.status == 0) {
+      EXPECT_EQ(r.err, "");
+    } else {
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+    }
+    EXPECT_LT(r.seconds, kMaxSeconds);
+    EXPECT_LT(r.peak_kib, kMaxKiB);
+    // The figures docs/reliability.md gives.
+    std::printf("  %-6s %-22s status %d  %5.2f s  %4ld MB\n", command.substr(0, command.find(' ')).c_str(),
+                std::filesystem::path(c.name).filename().c_str(), r.status, r.seconds, r.peak_kib / 1024);
+  }
+
+  void run_table(const std::vector<Case>& cases) {
+    for (const Case& c : cases) {
+      expect_case("check", c);
+      if (c.status == 0 && c.render) expect_case("render -o " + path("out.png") + " --size 8x8", c);
+    }
+  }
+
+  TempDir dir_;
+};
+
+TEST_F(Pathological, LongRunsOfBlanksNewlinesAndComments) {
+  const std::vector<std::pair<std::string, char>> blanks = {
+      {"space", ' '}, {"tab", '\t'}, {"cr", '\r'}, {"formfeed", '\f'}, {"vtab", '\v'}};
+  std::vector<Case> cases;
+  for (const auto& [name, blank] : blanks) {
+    write_file(dir_ / (name + ".frag"), "float a;" + std::string(kTenMB, blank) + "float b;\n" + kMain);
+    cases.push_back({path(name + ".frag"), 0, ""});
+  }
+  write_file(dir_ / "newlines.frag", std::string(kTenMB, '\n') + kMain);
+  write_file(dir_ / "comment.frag", "/*" + std::string(kTenMB, '*') + "*/\n" + kMain);
+  write_file(dir_ / "line_comment.frag", "//" + std::string(kTenMB, 'x') + "\n" + kMain);
+  write_file(dir_ / "unterminated.frag", kMain + "/* never closed\n");
+  cases.push_back({path("newlines.frag"), 0, ""});
+  cases.push_back({path("comment.frag"), 0, ""});
+  cases.push_back({path("line_comment.frag"), 0, ""});
+  cases.push_back({path("unterminated.frag"), 1, "unterminated.frag:2: error: 'comment' : End of input in comment"});
+  run_table(cases);
+}
+
+TEST_F(Pathological, DeepNestsAndLongMacroChains) {
+  const std::string open(100000, '('), close(100000, ')');
+  write_file(dir_ / "parens.frag", "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(" + open + "1.0" + close + ");\n}\n");
+  std::string ifs;
+  for (int i = 0; i < 10000; ++i) ifs += "#if 1\n";
+  ifs += kMain;
+  for (int i = 0; i < 10000; ++i) ifs += "#endif\n";
+  write_file(dir_ / "ifs.frag", ifs);
+  std::string chain = "#define M0 1.0\n";
+  for (int i = 1; i < 10000; ++i) chain += "#define M" + std::to_string(i) + " M" + std::to_string(i - 1) + "\n";
+  write_file(dir_ / "chain.frag", chain + "void mainImage(out vec4 c, in vec2 f) { c = vec4(M9999); }\n");
+  write_file(dir_ / "self.frag", "#define X X\n#define Y (Y + 1.0)\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { float X = 1.0; c = vec4(X); }\n");
+  write_file(dir_ / "self_used.frag", "#define Y (Y + 1.0)\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(Y); }\n");
+  // A 30,000-term sum: 60 KB of text, and a tree 30,000 levels deep that
+  // crashed glslang, and at 15,000 Mesa's compiler, on an 8 MiB stack.
+  std::string sum = "void mainImage(out vec4 c, in vec2 f) {\n  float x = 1.0;\n  x = x";
+  for (int i = 1; i < 30000; ++i) sum += "+x";
+  write_file(dir_ / "sum.frag", sum + ";\n  c = vec4(x);\n}\n");
+  // A macro that doubles 25 times: 2^26 terms from 1 KB, which glslang
+  // expands without a bound of its own (minutes and gigabytes, unchecked).
+  std::string bomb = "#define A0 x+x\n";
+  for (int i = 1; i <= 25; ++i)
+    bomb += "#define A" + std::to_string(i) + " A" + std::to_string(i - 1) + "+A" + std::to_string(i - 1) + "\n";
+  write_file(dir_ / "bomb.frag", bomb + "void mainImage(out vec4 c, in vec2 f) { float x = 1.0; c = vec4(A25); }\n");
+  run_table({
+      {path("bomb.frag"), 1, "bomb.frag: error: glslang "},
+      {path("parens.frag"), 1, "parens.frag:2: error: nested too deeply for glslang's parser"},
+      {path("ifs.frag"), 1, "ifs.frag:66:1: error: '#if' : maximum nesting depth exceeded"},
+      {path("chain.frag"), 0, ""},
+      {path("self.frag"), 0, ""},
+      {path("self_used.frag"), 1, "self_used.frag:2:"},  // Y stays Y, undeclared
+      {path("sum.frag"), 1, "sum.frag:3: error: an expression nested 300"},
+  });
+}
+
+TEST_F(Pathological, ManyIncludesOfOneFile) {
+  std::string includes;
+  for (int i = 0; i < 100000; ++i) includes += "#include \"one.glsl\"\n";
+  write_file(dir_ / "one.glsl", "const float ONE = 1.0;\n");
+  write_file(dir_ / "includes.frag", includes + "void mainImage(out vec4 c, in vec2 f) { c = vec4(ONE); }\n");
+  run_table({{path("includes.frag"), 0, ""}});
+}
+
+TEST_F(Pathological, NulBytesAndInvalidUtf8) {
+  write_file(dir_ / "nul_code.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0);" + std::string(1, '\0') + " }\n");
+  write_file(dir_ / "nul_comment.frag", "// a " + std::string(1, '\0') + " in a comment\n" + kMain);
+  write_file(dir_ / "utf8_code.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); \xff\xfe }\n");
+  write_file(dir_ / "utf8_comment.frag", "// caf\xc3 \xff\xfe\n" + kMain);
+  run_table({
+      {path("nul_code.frag"), 1, "nul_code.frag: error: not a text file (it contains NUL bytes)"},
+      {path("nul_comment.frag"), 1, "nul_comment.frag: error: not a text file (it contains NUL bytes)"},
+      // glslang quotes the byte; it prints escaped, so the line stays clean.
+      {path("utf8_code.frag"), 1, "utf8_code.frag:1: error: '\\x"},
+      {path("utf8_comment.frag"), 0, ""},
+  });
+}
+
+TEST_F(Pathological, FilesThatAreNotRegularFiles) {
+  std::filesystem::create_symlink("loop_b.frag", dir_ / "loop_a.frag");
+  std::filesystem::create_symlink("loop_a.frag", dir_ / "loop_b.frag");
+  ASSERT_EQ(mkfifo(path("fifo.glsl").c_str(), 0644), 0);
+  std::filesystem::create_directories(dir_ / "adir");
+  auto includer = [&](const std::string& name, const std::string& target) {
+    write_file(dir_ / name, "#include \"" + target + "\"\n" + kMain);
+    return path(name);
+  };
+  write_file(dir_ / "good.frag", kMain);
+  const std::string good = path("good.frag");
+  const std::string render = "render " + good + " -o " + path("out.png") + " --size 8x8 --channel0 ";
+  run_table({
+      {path("loop_a.frag"), 2, "loop_a.frag': is a symbolic link loop"},
+      {includer("fifo.frag", "fifo.glsl"), 1, "fifo.frag:1:10: error: cannot read include '" + path("fifo.glsl") +
+                                                  "': is a named pipe (FIFO), not a regular file"},
+      {includer("zero.frag", "/dev/zero"), 1, "zero.frag:1:10: error: cannot read include '/dev/zero': is a character device"},
+      {includer("dir.frag", "adir"), 1, "dir.frag:1:10: error: cannot read include '" + path("adir") + "': is a directory"},
+      {path("fifo.glsl"), 2, "fifo.glsl': is a named pipe (FIFO), not a regular file"},
+      {"/dev/zero", 2, "'/dev/zero': is a character device"},
+  });
+  for (const auto& [image, says] : std::vector<std::pair<std::string, std::string>>{
+           {path("fifo.glsl"), "is a named pipe (FIFO), not a regular file"},
+           {"/dev/zero", "is a character device, not a regular file"},
+           {path("adir"), "is a directory"}}) {
+    const test::Outcome r = test::run_binary(render + image);
+    EXPECT_EQ(r.status, 2) << image << "\n" << r.err;
+    EXPECT_EQ(r.err, "raymarching: error: --channel0 '" + image + "': " + says + "\n");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+}
+
+// What no real shader or image reaches is refused by its size, before it is read.
+TEST_F(Pathological, SizeLimits) {
+  const std::string over(16u * 1024 * 1024 + 1, ' ');
+  write_file(dir_ / "huge.frag", kMain + over);
+  write_file(dir_ / "huge.glsl", over);
+  write_file(dir_ / "includes_huge.frag", "#include \"huge.glsl\"\n" + kMain);
+  // Two includes under the limit each, over it together.
+  write_file(dir_ / "half_a.glsl", std::string(9u << 20, ' '));
+  write_file(dir_ / "half_b.glsl", std::string(9u << 20, ' '));
+  const std::string halves = "#include \"half_a.glsl\"\n#include \"half_b.glsl\"\n" + kMain;
+  write_file(dir_ / "halves.frag", halves);
+  const std::string scene_bytes = std::to_string(kMain.size() + over.size());
+  const std::string halves_bytes = std::to_string(halves.size() + (18u << 20));
+  run_table({
+      {path("huge.frag"), 2, "huge.frag': is " + scene_bytes + " bytes, over the 16 MiB limit for shader files"},
+      {path("includes_huge.frag"), 1, "includes_huge.frag:1:10: error: cannot read include '" + path("huge.glsl") +
+                                          "': is 16777217 bytes, over the 16 MiB limit for shader files"},
+      {path("halves.frag"), 1, "halves.frag:2:10: error: cannot read include '" + path("half_b.glsl") +
+                                   "': the scene with its includes would be " + halves_bytes + " bytes, over the 16 MiB limit"},
+  });
+  // An image whose header claims 100000x100000 pixels: 160 GB, had it been read.
+  write_file(dir_ / "huge.ppm", "P6\n100000 100000\n255\n" + std::string(64, '\x7f'));
+  write_file(dir_ / "good.frag", kMain);
+  const test::Outcome r = test::run_binary("render " + path("good.frag") + " -o " + path("out.png") +
+                                           " --channel0 " + path("huge.ppm"));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is 100000x100000 pixels; a channel image may be 1 to 16384 pixels a side"), std::string::npos)
+      << r.err;
+}
+
+}  // namespace
+}  // namespace rm
