@@ -10,6 +10,7 @@
 #include <ctime>
 #include <iostream>
 #include <optional>
+#include <utility>
 
 #include "core/capture.h"
 #include "core/channels.h"
@@ -59,7 +60,9 @@ class WindowApp {
  public:
   WindowApp(const WindowOptions& options, GLFWwindow* window)
       : options_(options), window_(window), scene_(options.scene, options.source),
-        watcher_(make_watcher(options.watch)) {}
+        watcher_(make_watcher(options.watch)) {
+    glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
+  }
 
   int run() {
     for (int i = 0; i < Channels::kCount; ++i) {
@@ -92,7 +95,8 @@ class WindowApp {
     else if (action == GLFW_RELEASE) mouse_.release();
     if (use_.drag) dirty_ = true;
   }
-  void on_cursor() {
+  void on_cursor(double x, double y) {
+    cursor_ = {x, y};
     mouse_.move(cursor_pixels());
     if (use_.pointer || (use_.drag && mouse_.imouse().z > 0.0f)) dirty_ = true;
   }
@@ -112,10 +116,12 @@ class WindowApp {
   void on_key(int key, int action, int mods);
 
  private:
-  // The cursor in framebuffer pixels, origin at the bottom left (GL's).
+  // The cursor in framebuffer pixels, origin at the bottom left (GL's), where
+  // the last event put it. glfwGetCursorPos would ask X11 where the pointer is
+  // now: with events queued behind a slow frame, a press would then take the
+  // position of a later move.
   glm::vec2 cursor_pixels() const {
-    double x = 0, y = 0;
-    glfwGetCursorPos(window_, &x, &y);
+    const auto [x, y] = cursor_;
     int w = 0, h = 0, fw = 0, fh = 0;
     glfwGetWindowSize(window_, &w, &h);
     glfwGetFramebufferSize(window_, &fw, &fh);
@@ -286,6 +292,7 @@ class WindowApp {
   Renderer renderer_;
   Channels channels_;
   MouseState mouse_;
+  std::pair<double, double> cursor_;  // window coordinates, from the last cursor event
   ShaderClock clock_;
   FrameInputs inputs_;
   int errors_ = 0;
@@ -347,7 +354,7 @@ int run_window(const WindowOptions& options) {
     WindowApp app(options, window);
     glfwSetWindowUserPointer(window, &app);
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) { app_of(w)->on_mouse_button(button, action); });
-    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { app_of(w)->on_cursor(); });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { app_of(w)->on_cursor(x, y); });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) { app_of(w)->on_key(key, action, mods); });
     glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { app_of(w)->on_refresh(); });
     glfwSetWindowIconifyCallback(window, [](GLFWwindow* w, int iconified) { app_of(w)->on_iconify(iconified); });
