@@ -3,6 +3,7 @@
 //   raymarching render SCENE -o F  render headless through EGL
 //   raymarching check SCENE [-E]   preprocess and validate only (-E: print the result)
 //   raymarching accuracy SCENE     what each accuracy knob costs and buys
+//   raymarching import P.json DIR  a Shadertoy JSON export as project files
 // Each command lives in app/commands/ with its options and its run; this
 // file only wires them.
 
@@ -11,6 +12,7 @@
 
 #include "commands/accuracy.h"
 #include "commands/check.h"
+#include "commands/import.h"
 #include "commands/render.h"
 #include "commands/window.h"
 #include "core/diagnostics.h"
@@ -29,6 +31,7 @@ int main(int argc, char** argv) {
   const rm::cli::RenderCommand render(app);
   const rm::cli::CheckCommand check(app);
   const rm::cli::AccuracyCommand accuracy(app);
+  const rm::cli::ImportCommand import(app);
 
   try {
     app.parse(argc, argv);
@@ -41,6 +44,7 @@ int main(int argc, char** argv) {
   try {
     if (accuracy.chosen()) return accuracy.run();
     if (check.chosen()) return check.run();
+    if (import.chosen()) return import.run();
     if (render.chosen()) return render.run();
     return window.run();
   } catch (const rm::cli::UsageError& e) {

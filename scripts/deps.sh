@@ -7,7 +7,7 @@ set -euo pipefail
 build_packages=(
   cmake ninja-build g++ pkg-config
   libglfw3-dev libglm-dev glslang-dev glslang-tools libopenimageio-dev libegl-dev libepoxy-dev
-  libcli11-dev libgtest-dev libgmock-dev
+  libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev
   libegl-mesa0 libgl1-mesa-dri  # Mesa: EGL and llvmpipe, for machines without a GPU
 )
 test_packages=(xvfb xauth xdotool twm openimageio-tools python3 git clang libclang-rt-14-dev)

@@ -1,5 +1,9 @@
 #include "commands/cli_options.h"
 
+#include <iostream>
+
+#include "core/shadertoy_json.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -80,6 +84,14 @@ std::chrono::system_clock::time_point parse_date(const std::string& text) {
   const std::time_t t = std::mktime(&tm);
   return std::chrono::system_clock::from_time_t(t) +
          std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(seconds - tm.tm_sec));
+}
+
+void check_project_file(const std::filesystem::path& path, const std::filesystem::path& media_dir) {
+  if (!is_shadertoy_json(path)) return;
+  std::string error;
+  auto project = read_shadertoy_file(path, media_dir, &error);
+  if (!project) throw UsageError{error};
+  for (const std::string& warning : project->warnings) std::cerr << "raymarching: warning: " << warning << '\n';
 }
 
 void require_readable_file(const fs::path& path) {

@@ -28,6 +28,10 @@ std::chrono::system_clock::time_point parse_date(const std::string& text);
 // (exit 2), not a shader error.
 void require_readable_file(const std::filesystem::path& path);
 
+// A Shadertoy .json is read once up front: malformed JSON is a usage error
+// (exit 2, with its line and column) and each stand-in is one warning.
+void check_project_file(const std::filesystem::path& path, const std::filesystem::path& media_dir);
+
 // -I DIR, -D NAME[=VALUE] and --quality, as a C compiler takes the first two.
 struct SourceFlags {
   std::vector<std::string> includes;

@@ -8,7 +8,8 @@ namespace rm::cli {
 RenderCommand::RenderCommand(CLI::App& app)
     : command_(app.add_subcommand("render", "Render SCENE headless through EGL (no display, no GPU needed)")) {
   CLI::App& c = *command_;
-  c.add_option("scene", scene_, "Shader to render")->required()->type_name("SCENE");
+  c.add_option("scene", scene_, "Shader or Shadertoy .json to render")->required()->type_name("SCENE");
+  c.add_option("--media", media_, "Where a .json's shadertoy.com media are, by file name")->type_name("DIR");
   c.add_option("-o,--output", out_, "Output image: .png (8-bit, clamped) or .exr (raw float)")->required()->type_name("OUT");
   source_.add_to(c);
   c.add_option("--size", size_, "Picture size in pixels")->type_name("WxH");
@@ -26,6 +27,7 @@ RenderCommand::RenderCommand(CLI::App& app)
 
 int RenderCommand::run() const {
   require_readable_file(scene_);
+  check_project_file(scene_, media_);
   RenderRequest req;
   req.scene = scene_;
   req.source = source_.source();
@@ -39,6 +41,7 @@ int RenderCommand::run() const {
   if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);
   if (!date_.empty()) req.date = parse_date(date_);
   req.channels = channels_.get();
+  req.media = media_;
   return render_command(req);
 }
 

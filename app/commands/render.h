@@ -21,6 +21,7 @@ class RenderCommand {
   double fps_ = 60.0;
   SourceFlags source_;
   ChannelFlags channels_;
+  std::string media_;
 };
 
 }  // namespace rm::cli

@@ -6,7 +6,8 @@
 namespace rm::cli {
 
 WindowCommand::WindowCommand(CLI::App& app) {
-  app.add_option("scene", scene_, "Shader to open (default: the bundled default scene)")->type_name("SCENE");
+  app.add_option("scene", scene_, "Shader or Shadertoy .json to open (default: the bundled default scene)")->type_name("SCENE");
+  app.add_option("--media", media_, "Where a .json's shadertoy.com media are, by file name")->type_name("DIR");
   source_.add_to(app);
   app.add_option("--size", size_, "Window size in screen coordinates")->type_name("WxH");
   app.add_option("--shot-dir", shot_dir_, "Directory for F12 screenshots")->type_name("DIR");
@@ -21,6 +22,8 @@ int WindowCommand::run() const {
   WindowOptions opts;
   opts.scene = scene_.empty() ? default_scene() : std::filesystem::path(scene_);
   require_readable_file(opts.scene);
+  opts.media = media_;
+  check_project_file(opts.scene, opts.media);
   opts.source = source_.source();
   opts.size = parse_size(size_, "--size");
   opts.shot_dir = shot_dir_;

@@ -14,7 +14,7 @@ class WindowCommand {
   int run() const;
 
  private:
-  std::string scene_, size_ = "800x450", shot_dir_ = ".", shot_format_ = "png", watch_ = "auto";
+  std::string scene_, media_, size_ = "800x450", shot_dir_ = ".", shot_format_ = "png", watch_ = "auto";
   int shot_scale_ = 1;
   bool verbose_ = false;
   SourceFlags source_;

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/host_inputs.h"
+
 namespace rm {
 
 namespace {
@@ -157,29 +159,18 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
 }
 
 Metadata frame_metadata(const fs::path& scene, const FrameInputs& in) {
-  auto num = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return std::string(buf);
-  };
-  const auto& m = in.mouse;
-  const std::string mouse = num(m.x) + "," + num(m.y) + "," + num(m.z) + "," + num(m.w);
-  const int seconds = static_cast<int>(in.date.w);
-  char date[64];
-  std::snprintf(date, sizeof date, "%04d-%02d-%02dT%02d:%02d:%06.3f", static_cast<int>(in.date.x),
-                static_cast<int>(in.date.y) + 1, static_cast<int>(in.date.z), seconds / 3600, seconds / 60 % 60,
-                std::fmod(static_cast<double>(in.date.w), 60.0));
-  const std::string size = std::to_string(static_cast<int>(in.resolution.x)) + "x" +
-                           std::to_string(static_cast<int>(in.resolution.y));
-  return {
-      {"raymarching:scene", fs::absolute(scene).lexically_normal().string()},
-      {"raymarching:iTime", num(in.time)},
-      {"raymarching:iFrame", std::to_string(in.frame)},
-      {"raymarching:iMouse", mouse},
-      {"raymarching:iDate", date},
-      {"ImageDescription", "raymarching render " + scene.string() + " --size " + size + " --time " + num(in.time) +
-                               " --frame " + std::to_string(in.frame) + " --mouse " + mouse + " --date " + date},
-  };
+  Metadata out{{"raymarching:scene", fs::absolute(scene).lexically_normal().string()}};
+  std::string command = "raymarching render " + scene.string() + " --size " +
+                        std::to_string(static_cast<int>(in.resolution.x)) + "x" +
+                        std::to_string(static_cast<int>(in.resolution.y));
+  for (const HostInput& input : host_inputs()) {
+    if (!input.record) continue;
+    std::string value = input.record(in);
+    command += " " + std::string(input.render_option) + " " + value;
+    out.emplace_back("raymarching:" + std::string(input.name), std::move(value));
+  }
+  out.emplace_back("ImageDescription", std::move(command));
+  return out;
 }
 
 Metadata read_metadata(const fs::path& path) {

@@ -2,6 +2,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+
 #include "core/files.h"
 
 namespace rm {
@@ -60,56 +62,30 @@ std::optional<Image> load_channel_image(const std::filesystem::path& path, std::
   return image;
 }
 
-Channels::Channels() {
-  for (int i = 0; i < kCount; ++i) clear(i);
-}
-
-void Channels::clear(int index) {
-  const float black[4] = {0, 0, 0, 0};
-  gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
-  glTextureStorage2D(texture.get(), 1, GL_RGBA8, 1, 1);
-  glTextureSubImage2D(texture.get(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, black);
-  textures_[static_cast<size_t>(index)] = std::move(texture);
-  resolution_[static_cast<size_t>(index)] = glm::vec3(0.0f);
-}
-
-bool Channels::use_scene_defaults(const Paths& scene_defaults, const Paths& from_command_line, std::string* error) {
-  bool ok = true;
-  for (size_t i = 0; i < kCount; ++i) {
-    if (!from_command_line[i].empty() || scene_defaults[i] == scene_defaults_[i]) continue;
-    if (scene_defaults[i].empty()) {
-      clear(static_cast<int>(i));
-      scene_defaults_[i].clear();
-      continue;
-    }
-    std::string why;
-    auto image = load_channel_image(scene_defaults[i], &why);
-    if (!image) {
-      *error = "iChannel" + std::to_string(i) + " '" + scene_defaults[i].string() + "': " + why;
-      ok = false;
-      continue;
-    }
-    set(static_cast<int>(i), *image);
-    scene_defaults_[i] = scene_defaults[i];
-  }
-  return ok;
-}
-
-void Channels::set(int index, const Image& file_image) {
-  const Image image = file_image.flipped();  // GL's row 0 is the bottom
-  // Shadertoy's defaults: mipmapped, linear filtering, repeat wrap.
-  gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+const ImageTextures::Entry* ImageTextures::get(const std::filesystem::path& path, std::string* error) {
+  if (auto it = entries_.find(path); it != entries_.end()) return &it->second;
+  auto file_image = load_channel_image(path, error);
+  if (!file_image) return nullptr;
+  const Image image = file_image->flipped();  // GL's row 0 is the bottom
+  Entry entry;
+  entry.texture = gl::make_texture(GL_TEXTURE_2D);
   int levels = 1;
   for (int size = std::max(image.width, image.height); size > 1; size /= 2) ++levels;
-  glTextureStorage2D(texture.get(), levels, GL_RGBA16F, image.width, image.height);
-  glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
-  glGenerateTextureMipmap(texture.get());
-  glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-  textures_[static_cast<size_t>(index)] = std::move(texture);
-  resolution_[static_cast<size_t>(index)] = glm::vec3(image.width, image.height, 1.0f);
+  glTextureStorage2D(entry.texture.get(), levels, GL_RGBA16F, image.width, image.height);
+  glTextureSubImage2D(entry.texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
+  glGenerateTextureMipmap(entry.texture.get());
+  entry.resolution = glm::vec3(image.width, image.height, 1.0f);
+  return &entries_.emplace(path, std::move(entry)).first->second;
+}
+
+const ImageTextures::Entry* ImageTextures::find(const std::filesystem::path& path) const {
+  auto it = entries_.find(path);
+  return it == entries_.end() ? nullptr : &it->second;
+}
+
+void ImageTextures::keep_only(const std::vector<std::filesystem::path>& used) {
+  for (auto it = entries_.begin(); it != entries_.end();)
+    it = std::find(used.begin(), used.end(), it->first) == used.end() ? entries_.erase(it) : std::next(it);
 }
 
 }  // namespace rm

@@ -1,8 +1,7 @@
-// Channels: the four iChannel textures. Images load through OpenImageIO; an
-// unset channel is a 1x1 transparent black texture with resolution 0, as on
-// Shadertoy, never uninitialised memory.
+// Channel images: decoded through OpenImageIO, checked before a pixel is
+// read, and kept as textures by path.
 #pragma once
-#include <array>
+#include <map>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,26 +23,24 @@ constexpr int kMaxImageChannels = 64;
 // *error on failure. No GL needed.
 std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error);
 
-class Channels {
+// The textures of channel images, by path: each file is read once and shared
+// by every pass that names it, mipmapped (Shadertoy's default filter needs
+// the levels), right side up as on Shadertoy.
+class ImageTextures {
  public:
-  static constexpr int kCount = 4;
-  using Paths = std::array<std::filesystem::path, kCount>;
-  Channels();  // needs a current GL context
-  void set(int index, const Image& image);  // sampled right side up, as on Shadertoy
-  void clear(int index);                    // back to 1x1 transparent black, resolution 0
-
-  // Shows the scene's default images (#pragma channelN) in the channels the
-  // command line left empty, loading only those that changed since the last
-  // call. On an unreadable image it sets *error ("iChannel1 'PATH': why"),
-  // leaves that channel as it was and returns false.
-  bool use_scene_defaults(const Paths& scene_defaults, const Paths& from_command_line, std::string* error);
-  GLuint texture(int index) const { return textures_[static_cast<size_t>(index)].get(); }
-  glm::vec3 resolution(int index) const { return resolution_[static_cast<size_t>(index)]; }
+  struct Entry {
+    gl::Texture texture;
+    glm::vec3 resolution{0.0f};
+  };
+  // The texture of `path`, read now if it was not before; nullptr with
+  // *error ("why") if the file cannot be read as an image.
+  const Entry* get(const std::filesystem::path& path, std::string* error);
+  const Entry* find(const std::filesystem::path& path) const;  // nullptr if not read
+  // Frees the textures of every path not in `used`.
+  void keep_only(const std::vector<std::filesystem::path>& used);
 
  private:
-  std::array<gl::Texture, kCount> textures_;
-  std::array<glm::vec3, kCount> resolution_{};
-  Paths scene_defaults_;  // what use_scene_defaults loaded
+  std::map<std::filesystem::path, Entry> entries_;
 };
 
 }  // namespace rm

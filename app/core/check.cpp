@@ -251,6 +251,32 @@ std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics
   return out;
 }
 
+std::optional<std::string> active_code(const std::string& text) {
+  ensure_glslang_initialized();
+  SandboxLimits limits;
+  limits.seconds = kValidationSeconds;
+  limits.bytes = kValidationBytes;
+  const SandboxResult child = run_sandboxed(
+      [&] {
+        std::string out;
+        run_with_stack(kValidationStack, [&] {
+          glslang::TShader shader(EShLangFragment);
+          const char* chars = text.c_str();
+          const int length = static_cast<int>(text.size());
+          shader.setStringsWithLengths(&chars, &length, 1);
+          glslang::TShader::ForbidIncluder includer;
+          std::string expanded;
+          if (shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, EShMsgDefault, &expanded,
+                                includer))
+            out = "+" + expanded;
+        });
+        return out;
+      },
+      limits);
+  if (child.status != SandboxResult::Status::Ok || child.output.empty()) return std::nullopt;
+  return child.output.substr(1);
+}
+
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format) {
   Diagnostics out;
   bool nesting_exceeded = false;

@@ -29,6 +29,10 @@ Diagnostics validate(const Source& source);
 // nullopt, with *diags, if the preprocessor fails.
 std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags);
 
+// `text` after glslang's preprocessor, within the validation limits: the code
+// the compiler would see. nullopt if the preprocessor fails.
+std::optional<std::string> active_code(const std::string& text);
+
 enum class LogFormat { Glslang, Mesa };
 // Turns a compiler or linker log into diagnostics located in the user's files.
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format);

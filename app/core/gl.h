@@ -13,6 +13,7 @@ inline void delete_texture(GLuint n) { glDeleteTextures(1, &n); }
 inline void delete_framebuffer(GLuint n) { glDeleteFramebuffers(1, &n); }
 inline void delete_vertex_array(GLuint n) { glDeleteVertexArrays(1, &n); }
 inline void delete_query(GLuint n) { glDeleteQueries(1, &n); }
+inline void delete_sampler(GLuint n) { glDeleteSamplers(1, &n); }
 
 template <void (*Delete)(GLuint)>
 class Object {
@@ -48,6 +49,7 @@ using Texture = Object<delete_texture>;
 using Framebuffer = Object<delete_framebuffer>;
 using VertexArray = Object<delete_vertex_array>;
 using Query = Object<delete_query>;
+using Sampler = Object<delete_sampler>;
 
 inline Texture make_texture(GLenum target) {
   GLuint n = 0;
@@ -58,6 +60,11 @@ inline Framebuffer make_framebuffer() {
   GLuint n = 0;
   glCreateFramebuffers(1, &n);
   return Framebuffer(n);
+}
+inline Sampler make_sampler() {
+  GLuint n = 0;
+  glCreateSamplers(1, &n);
+  return Sampler(n);
 }
 inline VertexArray make_vertex_array() {
   GLuint n = 0;

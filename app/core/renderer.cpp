@@ -5,17 +5,6 @@
 
 namespace rm {
 
-InputUse inputs_read(const Program& program) {
-  InputUse use;
-  for (const char* name : {"iTime", "iTimeDelta", "iFrame", "iFrameRate", "iDate", "iChannelTime", "u_time",
-                           "u_delta", "u_frame", "u_date"})
-    use.time = use.time || program.uses(name);
-  use.drag = program.uses("iMouse");
-  use.pointer = program.uses("u_mouse");
-  return use;
-}
-
-
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
   color_ = gl::make_texture(GL_TEXTURE_2D);
   glTextureStorage2D(color_.get(), 1, GL_RGBA32F, width, height);
@@ -41,31 +30,15 @@ Renderer::Renderer() : vao_(gl::make_vertex_array()) {
   max_tile_ = std::max(1, std::min({max_size, viewport[0], viewport[1], 8192}));
 }
 
-void Renderer::draw(const Program& program, const FrameInputs& in, const Channels& channels, glm::ivec2 size) const {
-  const float resolution[3] = {in.resolution.x, in.resolution.y, in.resolution.z};
-  program.set("iResolution", resolution, 3);
-  program.set("iTime", in.time);
-  program.set("iTimeDelta", in.time_delta);
-  program.set("iFrameRate", in.frame_rate);
-  program.set("iFrame", static_cast<float>(in.frame));
-  program.set("iMouse", &in.mouse.x, 4);
-  program.set("iDate", &in.date.x, 4);
-  program.set("iSampleRate", in.sample_rate);
-  program.set("rm_FragCoordOffset", &in.frag_coord_offset.x, 2);
-  // glslViewer / Book of Shaders names.
-  program.set("u_resolution", resolution, 2);
-  program.set("u_time", in.time);
-  program.set("u_delta", in.time_delta);
-  program.set("u_frame", static_cast<float>(in.frame));
-  program.set("u_mouse", &in.cursor.x, 2);
-  program.set("u_date", &in.date.x, 4);
-  for (int i = 0; i < Channels::kCount; ++i) {
-    glBindTextureUnit(static_cast<GLuint>(i), channels.texture(i));
+void Renderer::draw(const Program& program, const FrameInputs& in, const ChannelInputs& channels, glm::ivec2 size) const {
+  set_host_inputs(program, in);
+  for (int i = 0; i < 4; ++i) {
+    const ChannelInput& c = channels[static_cast<size_t>(i)];
+    glBindTextureUnit(static_cast<GLuint>(i), c.texture);
+    glBindSampler(static_cast<GLuint>(i), c.sampler);
     program.set_sampler("iChannel" + std::to_string(i), i);
     program.set_sampler("u_tex" + std::to_string(i), i);
-    const glm::vec3 r = channels.resolution(i);
-    program.set_element("iChannelResolution", i, &r.x, 3);
-    program.set_element("iChannelTime", i, &in.time, 1);
+    program.set_element("iChannelResolution", i, &c.resolution.x, 3);
   }
   glViewport(0, 0, size.x, size.y);
   glUseProgram(program.id());
@@ -73,7 +46,7 @@ void Renderer::draw(const Program& program, const FrameInputs& in, const Channel
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-Image Renderer::render_image(const Program& program, FrameInputs inputs, const Channels& channels, glm::ivec2 size) const {
+Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size) const {
   const int tile = max_tile_;
   if (size.x <= tile && size.y <= tile) {
     RenderTarget target(size.x, size.y);

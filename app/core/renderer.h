@@ -2,14 +2,14 @@
 // an offscreen float target, and reads pictures back.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "core/channels.h"
 #include "core/gl.h"
 #include "core/image.h"
-#include "core/inputs.h"
+#include "core/host_inputs.h"
 #include "core/program.h"
 
 namespace rm {
@@ -19,6 +19,7 @@ class RenderTarget {
  public:
   RenderTarget(int width, int height);
   void bind() const;
+  GLuint framebuffer() const { return fbo_.get(); }
   Image read() const;
   int width() const { return width_; }
   int height() const { return height_; }
@@ -29,27 +30,26 @@ class RenderTarget {
   gl::Framebuffer fbo_;
 };
 
-// What can change a program's picture, read from its active uniforms: a
-// shader that reads no clock draws the same picture until an input it reads
-// changes, so the window need not draw it again.
-struct InputUse {
-  bool time = false;     // iTime, iTimeDelta, iFrame, iFrameRate, iDate, iChannelTime, u_time, u_delta, u_frame, u_date
-  bool drag = false;     // iMouse: changes while the left button is held, and on press and release
-  bool pointer = false;  // u_mouse: follows the pointer, button or not
+// What one iChannel shows a pass when it draws.
+struct ChannelInput {
+  GLenum target = GL_TEXTURE_2D;
+  GLuint texture = 0;  // 0: nothing bound (the graph binds a transparent black texel instead)
+  GLuint sampler = 0;  // filter and wrap; 0: the texture's own
+  glm::vec3 resolution{0.0f};
 };
-InputUse inputs_read(const Program& program);
+using ChannelInputs = std::array<ChannelInput, 4>;
 
 class Renderer {
  public:
   Renderer();  // needs a current GL context
   // Sets every input the program reads and draws over the bound framebuffer's
   // (0,0,size) viewport.
-  void draw(const Program& program, const FrameInputs& inputs, const Channels& channels, glm::ivec2 size) const;
+  void draw(const Program& program, const FrameInputs& inputs, const ChannelInputs& channels, glm::ivec2 size) const;
 
   // Renders offscreen at `size`, in tiles no larger than the driver allows;
   // tiling shifts fragCoord, which only the Shadertoy wrapper honours, so
   // callers check supports_tiles() first.
-  Image render_image(const Program& program, FrameInputs inputs, const Channels& channels, glm::ivec2 size) const;
+  Image render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size) const;
   int max_tile() const { return max_tile_; }
   void limit_tile(int pixels) { max_tile_ = std::max(1, std::min(max_tile_, pixels)); }  // tests tiling
 

@@ -4,8 +4,8 @@
 
 namespace rm {
 
-Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags) {
-  Source source = preprocess(path, options);
+Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags, const FileSystem& files) {
+  Source source = preprocess(path, options, files);
   if (!source.ok()) {
     *diags = source.errors;
     return source;
@@ -18,7 +18,18 @@ Scene::Scene(fs::path path, SourceOptions options, FileSystem files)
     : path_(std::move(path)), options_(std::move(options)), files_(std::move(files)) {}
 
 ReloadStatus Scene::reload() {
-  Diagnostics diags;
+  const ReloadStatus status = prepare();
+  if (status == ReloadStatus::Swapped) commit();
+  return status;
+}
+
+void Scene::cache(Built built) {
+  cache_.push_back(std::move(built));
+  if (cache_.size() > kCacheSize) cache_.erase(cache_.begin());
+}
+
+ReloadStatus Scene::prepare() {
+  discard();
   Source source = preprocess(path_, options_, files_);
   watch_ = source.watch;
   if (source.ok() && attempted_ && source.text == attempted_text_) return ReloadStatus::Unchanged;
@@ -28,24 +39,14 @@ ReloadStatus Scene::reload() {
     diagnostics_ = source.errors;
     return ReloadStatus::Failed;
   }
-  auto keep_running_program = [this] {
-    if (!program_) return;
-    cache_.push_back({good_source_.text, std::move(*program_), std::move(good_source_)});
-    program_.reset();
-    if (cache_.size() > kCacheSize) cache_.erase(cache_.begin());
-  };
   for (auto it = cache_.begin(); it != cache_.end(); ++it) {
     if (it->text != source.text) continue;
-    Built cached = std::move(*it);
+    pending_ = std::move(*it);
     cache_.erase(it);
-    keep_running_program();
-    program_ = std::move(cached.program);
-    good_source_ = std::move(cached.source);
-    diagnostics_.clear();
-    ++generation_;
+    pending_diagnostics_.clear();
     return ReloadStatus::Swapped;
   }
-  diags = validate(source);
+  Diagnostics diags = validate(source);
   if (count_errors(diags) > 0) {
     diagnostics_ = std::move(diags);
     return ReloadStatus::Failed;
@@ -56,12 +57,28 @@ ReloadStatus Scene::reload() {
     diagnostics_ = std::move(driver);
     return ReloadStatus::Failed;
   }
-  keep_running_program();
-  program_ = std::move(built);
-  good_source_ = std::move(source);
-  diagnostics_ = std::move(diags);  // warnings only
-  ++generation_;
+  std::string text = source.text;
+  pending_ = Built{std::move(text), std::move(*built), std::move(source)};
+  pending_diagnostics_ = std::move(diags);  // warnings only
   return ReloadStatus::Swapped;
+}
+
+void Scene::commit() {
+  if (!pending_) return;
+  if (program_) cache({good_source_.text, std::move(*program_), std::move(good_source_)});
+  program_ = std::move(pending_->program);
+  good_source_ = std::move(pending_->source);
+  pending_.reset();
+  diagnostics_ = std::move(pending_diagnostics_);
+  pending_diagnostics_.clear();
+  ++generation_;
+}
+
+void Scene::discard() {
+  if (!pending_) return;
+  cache(std::move(*pending_));
+  pending_.reset();
+  attempted_ = false;  // the next prepare() builds it again (from the cache)
 }
 
 }  // namespace rm

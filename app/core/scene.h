@@ -17,7 +17,8 @@ enum class ReloadStatus {
 };
 
 // Preprocesses and validates with glslang: all that `check` does, no GL.
-Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags);
+Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags,
+                   const FileSystem& files = disk_file_system());
 
 class Scene {
  public:
@@ -28,6 +29,15 @@ class Scene {
   // Re-reads the files; needs a current GL context. A text built before (a
   // view or a preset switched back) comes from the cache without a compile.
   ReloadStatus reload();
+  // reload() in two steps, so that a project swaps all its passes or none:
+  // prepare() builds the new program and returns Swapped when one is ready
+  // to commit(); discard() keeps it cached and the running one running.
+  ReloadStatus prepare();
+  void commit();
+  void discard();
+  // The source of the prepared program if there is one, else the running one's.
+  const Source& latest_source() const { return pending_ ? pending_->source : good_source_; }
+  const Diagnostics& latest_diagnostics() const { return pending_ ? pending_diagnostics_ : diagnostics_; }
   // New -I/-D options (a view, a preset); they apply at the next reload().
   void set_options(SourceOptions options) { options_ = std::move(options); }
 
@@ -59,6 +69,9 @@ class Scene {
   };
   static constexpr size_t kCacheSize = 8;
   std::vector<Built> cache_;
+  std::optional<Built> pending_;  // prepared, not yet committed
+  Diagnostics pending_diagnostics_;
+  void cache(Built built);
 };
 
 }  // namespace rm

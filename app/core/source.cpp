@@ -5,7 +5,9 @@
 #include <system_error>
 #include <unordered_map>
 
+#include "core/check.h"
 #include "core/files.h"
+#include "core/host_inputs.h"
 #include "core/lexing.h"
 
 namespace rm {
@@ -16,22 +18,15 @@ constexpr int kMaxIncludeDepth = 256;
 constexpr int kHostFile = -1;
 constexpr int kCommandLineFile = -2;
 
-const char* const kShadertoyPrelude = R"(uniform vec3 iResolution;
-uniform float iTime;
-uniform float iTimeDelta;
-uniform float iFrameRate;
-uniform int iFrame;
-uniform vec4 iMouse;
-uniform vec4 iDate;
-uniform float iSampleRate;
-uniform float iChannelTime[4];
-uniform vec3 iChannelResolution[4];
-uniform sampler2D iChannel0;
-uniform sampler2D iChannel1;
-uniform sampler2D iChannel2;
-uniform sampler2D iChannel3;
-uniform vec2 rm_FragCoordOffset;
-out vec4 rm_FragColor;)";
+// The Shadertoy prelude: the host inputs (core/host_inputs.h), then each
+// channel as what it is bound to.
+std::string shadertoy_prelude() {
+  std::string out = host_input_declarations();
+  out += "uniform vec3 iChannelResolution[4];\n";
+  for (int i = 0; i < 4; ++i) out += "uniform sampler2D iChannel" + std::to_string(i) + ";\n";
+  out += "out vec4 rm_FragColor;";
+  return out;
+}
 
 // Shadertoy leaves fragColor's start value undefined; we start from opaque black.
 // With RM_VIEW (render --view, the window's V key) the pixel becomes a debug
@@ -89,9 +84,9 @@ struct IncludeDirective {
 };
 
 struct ChannelPragma {
-  int channel = 0;
-  std::string target;
-  int column = 0;  // 1-based column of "#"
+  int channel = -1;
+  int column = 0;         // 1-based column of "#"
+  std::string_view spec;  // what follows "channelN"
 };
 
 // `"FILE"` (or `<FILE>` when angled brackets are allowed) and nothing after
@@ -107,9 +102,8 @@ std::optional<std::string> quoted_name(std::string_view rest, bool allow_angled,
   return std::string(rest.substr(1, end - 1));
 }
 
-// `#pragma channelN "FILE"`: the scene's default image for iChannelN. Other
-// pragmas are the compiler's. *malformed is set for a channel pragma without
-// a quoted file name.
+// `#pragma channelN ...`: what iChannelN reads (core/channel_spec.h). Other
+// pragmas are the compiler's. *malformed is set for N outside 0..3.
 std::optional<ChannelPragma> parse_channel_pragma(std::string_view line, bool* malformed) {
   *malformed = false;
   auto d = lexing::directive(line);
@@ -121,16 +115,13 @@ std::optional<ChannelPragma> parse_channel_pragma(std::string_view line, bool* m
   if (digits == 0 || (digits_end < d->rest.size() && lexing::is_word_char(d->rest[digits_end]))) return std::nullopt;
   ChannelPragma pragma;
   pragma.column = static_cast<int>(d->hash) + 1;
-  const std::string_view rest = d->rest.substr(lexing::skip_blanks(d->rest, digits_end));
-  bool angled = false;
-  auto target = quoted_name(rest, /*allow_angled*/ false, &angled);
   const char n = d->rest[kChannel.size()];
-  if (digits != 1 || n > '3' || !target) {
+  if (digits != 1 || n > '3') {
     *malformed = true;
     return pragma;
   }
   pragma.channel = n - '0';
-  pragma.target = *target;
+  pragma.spec = d->rest.substr(digits_end);
   return pragma;
 }
 
@@ -255,17 +246,23 @@ class Preprocessor {
     }
     bool malformed = false;
     if (auto pragma = parse_channel_pragma(line, &malformed)) {
-      if (malformed) {
-        error(file, line_no, pragma->column, "#pragma channelN expects N in 0..3 and \"FILE\"");
+      std::string why;
+      auto spec = malformed ? std::nullopt : parse_channel_spec(pragma->spec, path.parent_path(), &why);
+      if (!spec) {
+        error(file, line_no, pragma->column,
+              "#pragma channelN " + (malformed ? std::string("expects N in 0..3") : why));
         return false;
       }
-      const fs::path image = fs::absolute(path.parent_path() / pragma->target).lexically_normal();
-      out_.watch.push_back(image);
-      if (!fs_.exists(image)) {
-        error(file, line_no, pragma->column, "cannot find channel image '" + pragma->target + "'");
-        return false;
+      if (!spec->path.empty()) {
+        out_.watch.push_back(spec->path);
+        if (!fs_.exists(spec->path)) {
+          const char* what = spec->kind == ChannelSpec::Kind::Pass ? "buffer pass" : "channel image";
+          error(file, line_no, pragma->column, std::string("cannot find ") + what + " '" +
+                                                   spec->path.lexically_relative(path.parent_path()).string() + "'");
+          return false;
+        }
       }
-      out_.channels[static_cast<size_t>(pragma->channel)] = image;
+      out_.channels[static_cast<size_t>(pragma->channel)] = *spec;
       add_body_line("", Origin{file, line_no});  // the driver never sees it; lines keep their numbers
       return true;
     }
@@ -334,10 +331,21 @@ class Preprocessor {
   }
 
   void assemble() {
-    const std::string code = lexing::strip_comments(body_);
-    const bool has_main = lexing::has_call(code, "main", "void");
-    const bool has_main_image = lexing::has_call(code, "mainImage");
+    std::string code = lexing::strip_comments(body_);
+    bool has_main = lexing::has_call(code, "main", "void");
+    bool has_main_image = lexing::has_call(code, "mainImage");
     const bool modern = version_ && version_->modern();
+    // Real Shadertoy shaders carry a main() for other hosts in an inactive
+    // #ifdef: with both, the kind is decided on what the compiler would see.
+    if (has_main && has_main_image) {
+      std::string defined = "#version 450 core\n#define HW_PERFORMANCE 1\n";
+      for (const auto& d : options_.defines) defined += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
+      if (auto active = active_code(defined + body_)) {
+        code = std::move(*active);
+        has_main = lexing::has_call(code, "main", "void");
+        has_main_image = lexing::has_call(code, "mainImage");
+      }
+    }
 
     if (has_main_image && !has_main) {
       out_.kind = ShaderKind::Shadertoy;
@@ -364,7 +372,7 @@ class Preprocessor {
     if (keep_version && version_->es()) emit_host("precision highp float;\nprecision highp int;");
 
     if (out_.kind == ShaderKind::Shadertoy) {
-      emit_host(kShadertoyPrelude);
+      emit_host(shadertoy_prelude());
     } else if (out_.kind == ShaderKind::Legacy) {
       emit_host(kLegacyPrelude);
       if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/channel_spec.h"
 #include "core/diagnostics.h"
 
 namespace rm {
@@ -62,9 +63,10 @@ struct Source {
   std::vector<Origin> line_map;    // one entry per line of text (0-based index)
   ShaderKind kind = ShaderKind::Shadertoy;
   std::string version_line;        // the #version line the final text starts with
-  // Default images for iChannel0..3, named in the shader by #pragma channelN "FILE"
-  // (relative to the file that names it); empty where none. A --channelN wins.
-  std::array<fs::path, 4> channels;
+  // What iChannel0..3 read, named in the shader by #pragma channelN
+  // (core/channel_spec.h; a file is relative to the file that names it);
+  // Kind::None where nothing is named. A --channelN wins.
+  std::array<ChannelSpec, 4> channels;
   Diagnostics errors;              // preprocessing errors; text is unusable if any
 
   bool ok() const { return errors.empty(); }

@@ -11,7 +11,8 @@
 #include <tuple>
 
 #include "core/capture.h"
-#include "core/channels.h"
+#include "core/frame_graph.h"
+#include "core/project.h"
 #include "core/check.h"
 #include "core/diagnostics.h"
 #include "core/lexing.h"
@@ -126,18 +127,18 @@ class Bench {
   // when given (the reference's depth comes from one centred sample).
   std::optional<Renders> render(const Setting& setting, std::string* error, const Setting* data_setting = nullptr) {
     const Setting& d = data_setting ? *data_setting : setting;
-    Scene color(req_.scene, options_for(setting), files_for(setting));
-    Scene data(req_.scene, with_view(options_for(d), View::Data), files_for(d));
+    Project color(req_.scene, options_for(setting), files_for(setting));
+    Project data(req_.scene, with_view(options_for(d), View::Data), files_for(d));
     if (color.reload() != ReloadStatus::Swapped || data.reload() != ReloadStatus::Swapped) {
       *error = join(color.diagnostics().empty() ? data.diagnostics() : color.diagnostics());
       return std::nullopt;
     }
-    Channels channels;
-    if (!channels.use_scene_defaults(color.source().channels, {}, error)) return std::nullopt;
+    FrameGraph color_graph(renderer_), data_graph(renderer_);
+    if (!color_graph.update(color, error) || !data_graph.update(data, error)) return std::nullopt;
     Renders out;
-    std::tie(out.ms, out.wall_ms) = time_frames(*color.program(), channels);
-    out.color = renderer_.render_image(*color.program(), inputs_, channels, req_.size);
-    out.data = renderer_.render_image(*data.program(), inputs_, channels, req_.size);
+    std::tie(out.ms, out.wall_ms) = time_frames(color, color_graph);
+    out.color = color_graph.render_frame(color, inputs_, req_.size);
+    out.data = data_graph.render_frame(data, inputs_, req_.size);
     return out;
   }
 
@@ -160,16 +161,15 @@ class Bench {
   // rasterise on worker threads that the query does not see, so there the
   // wall clock is the one to trust.
   static constexpr int kWarmUp = 5, kFrames = 15;
-  std::pair<double, double> time_frames(const Program& program, const Channels& channels) {
+  std::pair<double, double> time_frames(const Project& project, FrameGraph& graph) {
     GLuint query = 0;
     glGenQueries(1, &query);
     std::vector<double> gpu, wall;
     for (int i = 0; i < kWarmUp + kFrames; ++i) {
-      target_.bind();
       glFinish();  // nothing earlier may still be running inside this frame
       const auto start = std::chrono::steady_clock::now();
       glBeginQuery(GL_TIME_ELAPSED, query);
-      renderer_.draw(program, inputs_, channels, req_.size);
+      graph.draw(project, inputs_, req_.size, target_.framebuffer());
       glFinish();
       glEndQuery(GL_TIME_ELAPSED);
       const auto end = std::chrono::steady_clock::now();
@@ -326,17 +326,16 @@ int accuracy_command(const AccuracyRequest& input) {
   // The default's steps as a heatmap picture.
   {
     SourceOptions steps = with_view(req.source, View::Steps);
-    Scene scene(req.scene, steps);
-    if (scene.reload() == ReloadStatus::Swapped) {
+    Project project(req.scene, steps);
+    if (project.reload() == ReloadStatus::Swapped) {
       Renderer renderer;
-      Channels channels;
+      FrameGraph graph(renderer);
       std::string ignored;
-      channels.use_scene_defaults(scene.source().channels, {}, &ignored);
+      graph.update(project, &ignored);
       FrameInputs in;
       in.resolution = glm::vec3(req.size, 1.0f);
       in.time = static_cast<float>(req.time);
-      write_image(req.out / "steps.png", renderer.render_image(*scene.program(), in, channels, req.size), {},
-                  Overwrite::Replace, &error);
+      write_image(req.out / "steps.png", graph.render_frame(project, in, req.size), {}, Overwrite::Replace, &error);
     }
   }
 

@@ -10,6 +10,8 @@
 #include "core/channels.h"
 #include "core/check.h"
 #include "core/lexing.h"
+#include "core/frame_graph.h"
+#include "core/project.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "headless/egl_context.h"
@@ -62,64 +64,74 @@ int render_command(const RenderRequest& req) {
   if (!first_out)
     return fail("'" + req.out.string() + "': --frames needs a counter such as %04d in the output name", kExitUsage);
   if (auto problem = check_output_path(*first_out)) return fail(*problem, kExitUsage);
-  std::array<std::optional<Image>, Channels::kCount> images;
-  for (int i = 0; i < Channels::kCount; ++i) {
-    const auto& path = req.channels[static_cast<size_t>(i)];
-    if (path.empty()) continue;
+  for (size_t i = 0; i < req.channels.size(); ++i) {
+    const auto& path = req.channels[i];
     std::string error;
-    images[static_cast<size_t>(i)] = load_channel_image(path, &error);
-    if (!images[static_cast<size_t>(i)])
+    if (!path.empty() && !load_channel_image(path, &error))
       return fail("--channel" + std::to_string(i) + " '" + path.string() + "': " + error, kExitUsage);
   }
 
+  const ProjectFiles from = project_files(req.scene, req.media);
   const SourceOptions options = with_view(req.source, req.view);
   // Before validation, where a view the scene cannot show would stop at the
   // wrapper's #error instead of this one line.
   if (req.view != View::Picture)
-    if (const Source plain = preprocess(req.scene, req.source); plain.ok())
+    if (const Source plain = preprocess(from.image, req.source, from.files); plain.ok())
       if (auto problem = view_problem(plain, req.view))
         return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
   Diagnostics diags;
-  check_scene(req.scene, options, &diags);
+  check_scene(from.image, options, &diags, from.files);
   print_diagnostics(diags);
   if (count_errors(diags)) return kExitShaderError;
 
   std::string error;
   auto context = EglContext::create(&error);
   if (!context) return fail(error, kExitUsage);
-  Scene scene(req.scene, options);
-  if (scene.reload() != ReloadStatus::Swapped) {
-    print_diagnostics(scene.diagnostics());
+  Project project(from, req.source, req.channels);
+  project.set_options(req.source, options);
+  if (project.reload() != ReloadStatus::Swapped) {
+    print_diagnostics(project.diagnostics());
     return kExitShaderError;
   }
   Renderer renderer;
-  if (std::max(req.size.x, req.size.y) > renderer.max_tile() && scene.source().kind != ShaderKind::Shadertoy)
+  if (std::max(req.size.x, req.size.y) > renderer.max_tile() && project.image_source().kind != ShaderKind::Shadertoy)
     return fail("--size " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) + " is larger than " +
                     std::to_string(renderer.max_tile()) + " pixels, which only mainImage shaders can render (in tiles)",
                 kExitUsage);
-  Channels channels;
-  for (int i = 0; i < Channels::kCount; ++i)
-    if (images[static_cast<size_t>(i)]) channels.set(i, *images[static_cast<size_t>(i)]);
-  if (!channels.use_scene_defaults(scene.source().channels, req.channels, &error)) return fail(error, kExitUsage);
+  FrameGraph graph(renderer);
+  if (!graph.update(project, &error)) return fail(error, kExitUsage);
 
   const int count = sequence ? req.frames : 1;
   const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
   const auto date = req.date.value_or(std::chrono::system_clock::now());
-  for (int i = 0; i < count; ++i) {
+  auto inputs_at = [&](int frame, double time, double since_first) {
     FrameInputs in;
     in.resolution = glm::vec3(req.size, 1.0f);
-    in.time = static_cast<float>(req.time + i / req.fps);
+    in.time = static_cast<float>(time);
     in.time_delta = static_cast<float>(1.0 / req.fps);
     in.frame_rate = static_cast<float>(req.fps);
-    in.frame = first_frame + i;
+    in.frame = frame;
     in.mouse = req.mouse;
     in.cursor = glm::vec2(req.mouse);
     in.date = date_of(date + std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                                 std::chrono::duration<double>(i / req.fps)));
-    Image image = renderer.render_image(*scene.program(), in, channels, req.size);
+                                 std::chrono::duration<double>(since_first)));
+    return in;
+  };
+  // A project that feeds frames into later ones shows at frame N what it
+  // would show live: every frame before it is drawn first.
+  const bool warm_up = project.has_feedback() && first_frame > 0;
+  const int total = (warm_up ? first_frame : 0) + count;
+  for (int f = 0; warm_up && f < first_frame; ++f) {
+    graph.draw_buffers(project, inputs_at(f, f / req.fps, (f - first_frame) / req.fps), req.size);
+    if (f % 16 == 15) glFinish();  // bound the work queued on software renderers
+    show_progress(f + 1, total);
+  }
+  for (int i = 0; i < count; ++i) {
+    const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
+    Image image = graph.render_frame(project, in, req.size);
     const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
     if (!write_image(out, image, frame_metadata(req.scene, in), Overwrite::Replace, &error)) return fail(error, kExitUsage);
-    if (sequence) show_progress(i + 1, count);
+    if (sequence || warm_up) show_progress(total - count + i + 1, total);
   }
   return kExitOk;
 }

@@ -24,6 +24,7 @@ struct RenderRequest {
   double fps = 60.0;
   glm::vec4 mouse{0.0f};
   std::array<std::filesystem::path, 4> channels;
+  std::filesystem::path media;  // a .json's shadertoy.com media
   std::optional<std::chrono::system_clock::time_point> date;  // default: now
   View view = View::Picture;  // --view: a debug view instead of the picture
 };

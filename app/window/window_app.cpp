@@ -14,11 +14,14 @@
 
 #include "core/capture.h"
 #include "core/channels.h"
+#include "core/frame_graph.h"
+#include "core/project.h"
 #include "core/gl_census.h"
 #include "core/gl_debug.h"
 #include "core/views.h"
 #include "core/renderer.h"
 #include "core/scene.h"
+#include "window/key_codes.h"
 
 namespace rm {
 
@@ -32,6 +35,8 @@ const char* window_keys_help() {
          "  V            cycle views: picture, steps, normals, depth, nan\n"
          "  Esc, Q       quit\n"
          "  F1           print these keys\n"
+         "  A project that reads the keyboard (#pragma channelN keyboard) gets every\n"
+         "  key but F1-F12 and Esc; quit it with Esc.\n"
          "mouse:\n"
          "  left drag    iMouse (moves the light in the examples)\n";
 }
@@ -59,22 +64,19 @@ std::string timestamp_now() {
 class WindowApp {
  public:
   WindowApp(const WindowOptions& options, GLFWwindow* window)
-      : options_(options), window_(window), scene_(options.scene, options.source),
-        watcher_(make_watcher(options.watch)) {
+      : options_(options), window_(window), project_(project_files(options.scene, options.media), options.source, options.channels),
+        watcher_(make_watcher(options.watch)), graph_(renderer_) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
   }
 
   int run() {
-    for (int i = 0; i < Channels::kCount; ++i) {
-      const auto& path = options_.channels[static_cast<size_t>(i)];
-      if (path.empty()) continue;
+    for (size_t i = 0; i < options_.channels.size(); ++i) {
+      const auto& path = options_.channels[i];
       std::string error;
-      auto image = load_channel_image(path, &error);
-      if (!image) {
+      if (!path.empty() && !load_channel_image(path, &error)) {
         std::cerr << "raymarching: error: --channel" << i << " '" << path.string() << "': " << error << '\n';
         return kExitUsage;
       }
-      channels_.set(i, *image);
     }
     load();
     while (!glfwWindowShouldClose(window_) && !quit_) {
@@ -130,21 +132,20 @@ class WindowApp {
   }
 
   void load() {
-    const ReloadStatus status = scene_.reload();
-    watcher_->watch(scene_.watch_list());
+    const ReloadStatus status = project_.reload();
+    watcher_->watch(project_.watch_list());
     if (status == ReloadStatus::Unchanged) return;
-    const Diagnostics& diags = scene_.diagnostics();
+    const Diagnostics& diags = project_.diagnostics();
     if (!diags.empty()) std::cerr << join(diags);
     errors_ = count_errors(diags);
-    if (const Program* program = scene_.program()) use_ = inputs_read(*program);
+    if (project_.ready()) use_ = project_.inputs_read();
     dirty_ = true;  // a new program, or the stale badge and title
     std::string channel_error;
-    if (status == ReloadStatus::Swapped &&
-        !channels_.use_scene_defaults(scene_.source().channels, options_.channels, &channel_error))
+    if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error))
       std::cerr << "raymarching: error: " << channel_error << '\n';
     if (options_.verbose) {
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
-                << scene_.generation() << '\n';
+                << project_.generation() << '\n';
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
     }
     update_title(true);
@@ -170,8 +171,8 @@ class WindowApp {
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
-    if (const Program* program = scene_.program()) {
-      renderer_.draw(*program, inputs_, channels_, {width, height});
+    if (project_.ready()) {
+      graph_.draw(project_, inputs_, {width, height});
     } else {
       glViewport(0, 0, width, height);
       glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
@@ -184,13 +185,14 @@ class WindowApp {
     }
     glfwSwapBuffers(window_);
     ++frames_drawn_;
-    if (options_.verbose && presented_generation_ != scene_.generation()) {
-      presented_generation_ = scene_.generation();
+    if (options_.verbose && presented_generation_ != project_.generation()) {
+      presented_generation_ = project_.generation();
       std::cerr << "raymarching: presented generation " << presented_generation_ << " at " << steady_ns() << '\n';
     }
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
     dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
     mouse_.end_frame();
+    graph_.keyboard().end_frame();
     if (!clock_.paused()) clock_.next_frame();
     if (delta < 0.25f) frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;  // not across idle waits
     update_title(false);
@@ -216,7 +218,7 @@ class WindowApp {
     std::string title = options_.scene.filename().string() + " \xE2\x80\x94 ";
     if (errors_ > 0) {
       title += std::to_string(errors_) + (errors_ == 1 ? " error" : " errors");
-      title += scene_.program() ? ", showing last good" : ", nothing to show yet";
+      title += project_.ready() ? ", showing last good" : ", nothing to show yet";
     } else {
       char buf[32];
       std::snprintf(buf, sizeof buf, "%.1f ms", frame_ms_);
@@ -224,19 +226,18 @@ class WindowApp {
     }
     if (view_ != View::Picture) title += std::string(" (view: ") + to_string(view_) + ")";
     if (clock_.paused()) title += " (paused)";
-    if (scene_.program() && !use_.time) title += " (static: drawn on change)";
+    if (project_.ready() && !use_.time) title += " (static: drawn on change)";
     glfwSetWindowTitle(window_, title.c_str());
   }
 
   void screenshot() {
-    const Program* program = scene_.program();
-    if (!program) {
+    if (!project_.ready()) {
       std::cerr << "raymarching: error: no picture to take: the scene has not compiled yet\n";
       return;
     }
     const int scale = std::max(1, options_.shot_scale);
     const glm::ivec2 size = glm::ivec2(glm::vec2(inputs_.resolution)) * scale;
-    if (std::max(size.x, size.y) > renderer_.max_tile() && scene_.source().kind != ShaderKind::Shadertoy) {
+    if (std::max(size.x, size.y) > renderer_.max_tile() && project_.image_source().kind != ShaderKind::Shadertoy) {
       std::cerr << "raymarching: error: --shot-scale " << scale << " exceeds " << renderer_.max_tile()
                 << " pixels, which only mainImage shaders can render in tiles\n";
       return;
@@ -245,7 +246,7 @@ class WindowApp {
     in.resolution = glm::vec3(size, 1.0f);
     in.mouse *= static_cast<float>(scale);
     in.cursor *= static_cast<float>(scale);
-    Image image = renderer_.render_image(*program, in, channels_, size);
+    Image image = graph_.render_image(project_, in, size);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const std::string name = options_.scene.stem().string() + "-" + timestamp_now() + "." + options_.shot_format;
     std::string error;
@@ -258,9 +259,9 @@ class WindowApp {
   // show are skipped. Each view is its own program, cached by the scene.
   void cycle_view() {
     View next = next_view(view_);
-    while (next != View::Picture && view_problem(scene_.source(), next)) next = next_view(next);
+    while (next != View::Picture && view_problem(project_.image_source(), next)) next = next_view(next);
     view_ = next;
-    scene_.set_options(with_view(options_.source, view_));
+    project_.set_options(options_.source, with_view(options_.source, view_));
     load();
     if (options_.verbose) std::cerr << "raymarching: view " << to_string(view_) << '\n';
   }
@@ -287,10 +288,10 @@ class WindowApp {
 
   const WindowOptions& options_;
   GLFWwindow* window_;
-  Scene scene_;
+  Project project_;
   std::unique_ptr<Watcher> watcher_;
   Renderer renderer_;
-  Channels channels_;
+  FrameGraph graph_;
   MouseState mouse_;
   std::pair<double, double> cursor_;  // window coordinates, from the last cursor event
   ShaderClock clock_;
@@ -310,12 +311,27 @@ class WindowApp {
 };
 
 void WindowApp::on_key(int key, int action, int) {
+  // A project that reads the keyboard gets every key but F1-F12 and Esc.
+  const bool host_key = (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F25) || key == GLFW_KEY_ESCAPE;
+  if (project_.reads_keyboard()) {
+    const int code = browser_key_code(key);
+    if (code >= 0 && action == GLFW_PRESS) graph_.keyboard().press(code);
+    if (code >= 0 && action == GLFW_RELEASE) graph_.keyboard().release(code);
+    dirty_ = true;
+    if (!host_key) return;
+  }
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
   const bool press = action == GLFW_PRESS;
   switch (key) {
     case GLFW_KEY_F12: if (press) shot_requested_ = true; break;
     case GLFW_KEY_SPACE: if (press) clock_.set_paused(!clock_.paused()); update_title(true); break;
-    case GLFW_KEY_R: if (press) clock_.restart(); dirty_ = true; break;
+    case GLFW_KEY_R:
+      if (press) {
+        clock_.restart();
+        graph_.restart();
+      }
+      dirty_ = true;
+      break;
     case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;

@@ -21,6 +21,7 @@ struct WindowOptions {
   std::string shot_format = "png";    // png | exr
   int shot_scale = 1;
   std::array<std::filesystem::path, 4> channels;
+  std::filesystem::path media;        // a .json's shadertoy.com media
   WatchBackend watch = WatchBackend::Auto;
   bool verbose = false;               // log reloads and presented frames to stderr
 };

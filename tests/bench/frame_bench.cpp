@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "core/channels.h"
+#include "core/frame_graph.h"
+#include "core/project.h"
 #include "core/data_paths.h"
 #include "core/renderer.h"
-#include "core/scene.h"
 #include "headless/egl_context.h"
 
 namespace fs = std::filesystem;
@@ -37,18 +37,18 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "renderer: %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
   struct Timed {
     fs::path path;
-    std::unique_ptr<rm::Scene> scene;
-    std::unique_ptr<rm::Channels> channels;
+    std::unique_ptr<rm::Project> project;
+    std::unique_ptr<rm::FrameGraph> graph;
     double best_median = 1e30, min = 1e30, max = 0;
   };
   std::vector<Timed> scenes;
   for (int a = 1; a < argc; ++a) {
-    Timed t{argv[a], std::make_unique<rm::Scene>(argv[a], options), std::make_unique<rm::Channels>()};
-    if (t.scene->reload() != rm::ReloadStatus::Swapped) {
+    Timed t{argv[a], std::make_unique<rm::Project>(argv[a], options), std::make_unique<rm::FrameGraph>(renderer)};
+    if (t.project->reload() != rm::ReloadStatus::Swapped) {
       std::fprintf(stderr, "frame_bench: %s does not build\n", argv[a]);
       return 1;
     }
-    if (!t.channels->use_scene_defaults(t.scene->source().channels, {}, &error)) {
+    if (!t.graph->update(*t.project, &error)) {
       std::fprintf(stderr, "frame_bench: %s\n", error.c_str());
       return 2;
     }
@@ -63,9 +63,8 @@ int main(int argc, char** argv) {
         in.time = 1.0f + i / 60.0f;
         in.frame = 60 + i;
         in.mouse = glm::vec4(420, 300, 0, 0);
-        target.bind();
         const auto start = Clock::now();
-        renderer.draw(*t.scene->program(), in, *t.channels, {kWidth, kHeight});
+        t.graph->draw(*t.project, in, {kWidth, kHeight}, target.framebuffer());
         glFinish();
         const double elapsed = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         if (i >= kWarmUp) ms.push_back(elapsed);

@@ -49,7 +49,7 @@ TEST_F(ReloadLeak, AlternatingGoodAndBrokenReloadsHoldNoMoreGlObjects) {
   const auto path = dir / "scene.frag";
   Scene scene(path, {});
   Renderer renderer;
-  Channels channels;
+  const ChannelInputs channels{};  // nothing bound
   GlCensus warm;
   constexpr int kReloads = 240;
   for (int i = 0; i < kReloads; ++i) {

@@ -29,7 +29,7 @@ class Gpu : public test::EglTest {
   }
 
   Renderer renderer_;
-  Channels channels_;
+  ChannelInputs channels_{};  // nothing bound
   TempDir dir_;
 };
 

@@ -216,9 +216,9 @@ TEST(Source, ChannelPragmaNamesADefaultImageRelativeToItsFile) {
   write_file(dir / "lib/wood.png", "x");
   Source s = preprocess(dir / "scene.frag", {});
   ASSERT_TRUE(s.ok()) << join(s.errors);
-  EXPECT_EQ(s.channels[0], dir / "lib/wood.png");
-  EXPECT_TRUE(s.channels[1].empty());
-  EXPECT_EQ(s.channels[2], dir / "tex.png");
+  EXPECT_EQ(s.channels[0].path, dir / "lib/wood.png");
+  EXPECT_EQ(s.channels[1].kind, ChannelSpec::Kind::None);
+  EXPECT_EQ(s.channels[2].path, dir / "tex.png");
   EXPECT_EQ(s.text.find("channel"), std::string::npos) << "the driver never sees the pragma";
   EXPECT_NE(s.text.find("#pragma optimize(off)"), std::string::npos) << "other pragmas pass through";
   EXPECT_EQ(origin_of(s, "s_marker"), std::make_pair((dir / "scene.frag").string(), 4));
@@ -280,7 +280,7 @@ TEST(Source, DirectivesInEverySpellingAndAnyLength) {
   EXPECT_EQ(s.kind, ShaderKind::Complete);
   EXPECT_EQ(origin_of(s, "a_marker").second, 1);
   EXPECT_EQ(origin_of(s, "b_marker").second, 1);
-  EXPECT_EQ(s.channels[2], dir / "c.png");
+  EXPECT_EQ(s.channels[2].path, dir / "c.png");
   EXPECT_EQ(origin_of(s, "#pragma channels").second, 5);
   // Form feed and vertical tab, blanks to GLSL but not to glslang, are spaces.
   EXPECT_EQ(s.text.find_first_of("\f\v"), std::string::npos);

@@ -1,0 +1,44 @@
+#include "commands/import.h"
+
+#include <fstream>
+#include <iostream>
+
+#include "commands/cli_options.h"
+#include "core/diagnostics.h"
+#include "core/shadertoy_json.h"
+
+namespace rm::cli {
+
+ImportCommand::ImportCommand(CLI::App& app)
+    : command_(app.add_subcommand("import", "Write a Shadertoy .json export out as project files, for editing")) {
+  CLI::App& c = *command_;
+  c.add_option("json", json_, "Shadertoy JSON export")->required()->type_name("PROJECT.json");
+  c.add_option("dir", dir_, "Directory to write image.frag, buffer_a.frag ..., common.glsl into")->required()->type_name("DIR");
+  c.add_option("--media", media_, "Where the shadertoy.com media are, by file name")->type_name("DIR");
+  c.add_flag("-f,--force", force_, "Replace files that exist");
+}
+
+int ImportCommand::run() const {
+  require_readable_file(json_);
+  std::string error;
+  auto project = read_shadertoy_file(json_, media_, &error);
+  if (!project) throw UsageError{error};
+  for (const std::string& warning : project->warnings) std::cerr << "raymarching: warning: " << warning << '\n';
+  const std::filesystem::path dir = dir_;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir, ec)) throw UsageError{"'" + dir_ + "': cannot create the directory"};
+  // Nothing is written unless everything can be: no half-imported project.
+  for (const auto& [name, text] : project->files)
+    if (!force_ && std::filesystem::exists(dir / name, ec))
+      throw UsageError{"'" + (dir / name).string() + "' exists (--force replaces it)"};
+  for (const auto& [name, text] : project->files) {
+    std::ofstream out(dir / name, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw UsageError{"'" + (dir / name).string() + "': cannot write"};
+  }
+  std::cout << (dir / ShadertoyProject::kImage).string() << '\n';
+  return kExitOk;
+}
+
+}  // namespace rm::cli

@@ -1,0 +1,52 @@
+// What a pass names for one of its iChannels, in its own source:
+//   #pragma channel0 "rock.png"                 an image (mipmapped, repeat)
+//   #pragma channel1 "buffer_a.frag"            a buffer pass (.frag/.glsl)
+//   #pragma channel2 self                       this pass's previous frame
+//   #pragma channel3 keyboard                   the 256x3 keyboard texture
+// followed by Shadertoy's sampler settings where the defaults do not fit:
+//   filter=nearest|linear|mipmap  wrap=clamp|repeat  vflip=true|false
+// No GL here: the core's graph (core/passes.h) turns specs into textures.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace rm {
+
+struct Sampler {
+  enum class Filter { Nearest, Linear, Mipmap };
+  enum class Wrap { Clamp, Repeat };
+  Filter filter = Filter::Mipmap;
+  Wrap wrap = Wrap::Repeat;
+  bool vflip = true;  // true: an image's first row is the picture's top; a buffer is read as it was drawn
+  bool operator==(const Sampler&) const = default;
+};
+
+struct ChannelSpec {
+  enum class Kind { None, Image, Pass, Self, Keyboard };
+  Kind kind = Kind::None;
+  std::filesystem::path path;  // Image and Pass: absolute
+  Sampler sampler;
+  bool operator==(const ChannelSpec&) const = default;
+};
+
+// Shadertoy's default sampler for each kind of input.
+Sampler default_sampler(ChannelSpec::Kind kind);
+
+// Whether a named file is a shader (a buffer pass) rather than an image.
+bool is_shader_file(const std::filesystem::path& path);
+
+// Reads what follows "#pragma channelN": a quoted file (relative to
+// `relative_to`), `self` or `keyboard`, then sampler settings. nullopt with
+// *error set on anything else.
+std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::filesystem::path& relative_to,
+                                              std::string* error);
+
+// The spelling parse_channel_spec reads, for `import` to write. `file` is
+// written as given (relative to the pass that names it).
+std::string channel_spec_text(const ChannelSpec& spec, const std::string& file);
+
+const char* to_string(ChannelSpec::Kind kind);
+
+}  // namespace rm

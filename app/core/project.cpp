@@ -1,0 +1,163 @@
+#include "core/project.h"
+
+#include <algorithm>
+
+#include "core/shadertoy_json.h"
+
+namespace rm {
+
+ProjectFiles project_files(const fs::path& path, const fs::path& media_dir) {
+  if (!is_shadertoy_json(path)) return {path, disk_file_system()};
+  return {fs::absolute(path).lexically_normal() / ShadertoyProject::kImage, shadertoy_file_system(path, media_dir)};
+}
+
+Project::Project(fs::path image, SourceOptions options, FileSystem files, std::array<fs::path, 4> channels)
+    : image_path_(fs::absolute(image).lexically_normal()),
+      options_(options),
+      image_options_(std::move(options)),
+      files_(std::move(files)),
+      channel_overrides_(std::move(channels)) {}
+
+void Project::set_options(SourceOptions all, SourceOptions image_only) {
+  options_ = std::move(all);
+  image_options_ = std::move(image_only);
+  for (auto& [file, scene] : scenes_) scene->set_options(file == image_path_ ? image_options_ : options_);
+}
+
+Scene& Project::scene_for(const fs::path& file) {
+  auto& scene = scenes_[file];
+  if (!scene) scene = std::make_unique<Scene>(file, file == image_path_ ? image_options_ : options_, files_);
+  return *scene;
+}
+
+const Source& Project::image_source() const {
+  static const Source none;
+  return ready() ? image().scene->source() : none;
+}
+
+ReloadStatus Project::reload() {
+  diagnostics_.clear();
+  bool failed = false, changed = false;
+  // Every pass reachable from the image pass, the image first.
+  std::vector<fs::path> reached{image_path_};
+  for (size_t i = 0; i < reached.size(); ++i) {
+    Scene& scene = scene_for(reached[i]);
+    const ReloadStatus status = scene.prepare();
+    const Diagnostics& diags = scene.latest_diagnostics();
+    diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());
+    changed = changed || status == ReloadStatus::Swapped;
+    // Unchanged since a failed attempt is still failed.
+    if (status == ReloadStatus::Failed || (status == ReloadStatus::Unchanged && count_errors(diags) > 0) ||
+        (!scene.program() && status != ReloadStatus::Swapped)) {
+      failed = true;
+      continue;
+    }
+    for (const ChannelSpec& channel : scene.latest_source().channels) {
+      if (channel.kind != ChannelSpec::Kind::Pass) continue;
+      if (channel.path == image_path_) {
+        Diagnostic d;
+        d.path = reached[i].string();
+        d.message = "'" + image_path_.filename().string() + "' is the image pass: no pass can read it";
+        diagnostics_.push_back(d);
+        failed = true;
+      } else if (std::find(reached.begin(), reached.end(), channel.path) == reached.end()) {
+        reached.push_back(channel.path);
+      }
+    }
+  }
+  if (reached.size() > kMaxBuffers + 1) {
+    Diagnostic d;
+    d.path = image_path_.string();
+    d.message = "a project may have at most " + std::to_string(kMaxBuffers) + " buffer passes; this one reaches " +
+                std::to_string(reached.size() - 1);
+    diagnostics_.push_back(d);
+    failed = true;
+  }
+  auto same_passes = [&] {
+    if (reached.size() != passes_.size()) return false;
+    for (const Pass& pass : passes_)
+      if (std::find(reached.begin(), reached.end(), pass.file) == reached.end()) return false;
+    return true;
+  };
+  if (failed) {
+    for (const fs::path& file : reached) scene_for(file).discard();
+    return ReloadStatus::Failed;
+  }
+  if (!changed && same_passes()) return ReloadStatus::Unchanged;
+
+  for (const fs::path& file : reached) scene_for(file).commit();
+  for (auto it = scenes_.begin(); it != scenes_.end();)
+    it = std::find(reached.begin(), reached.end(), it->first) == reached.end() ? scenes_.erase(it) : std::next(it);
+  // Buffers in the order of their file names, then the image.
+  std::vector<fs::path> buffers(reached.begin() + 1, reached.end());
+  std::sort(buffers.begin(), buffers.end(), [](const fs::path& a, const fs::path& b) {
+    return std::make_pair(a.filename(), a) < std::make_pair(b.filename(), b);
+  });
+  buffers.push_back(image_path_);
+  passes_.clear();
+  for (const fs::path& file : buffers) {
+    Pass pass;
+    pass.file = file;
+    pass.scene = scenes_.at(file).get();
+    pass.is_image = file == image_path_;
+    pass.channels = pass.scene->source().channels;
+    for (size_t c = 0; c < 4; ++c) {
+      ChannelSpec& spec = pass.channels[c];
+      if (spec.kind == ChannelSpec::Kind::Self) {
+        spec.kind = ChannelSpec::Kind::Pass;
+        spec.path = file;
+      }
+      if (pass.is_image && !channel_overrides_[c].empty())
+        spec = ChannelSpec{ChannelSpec::Kind::Image, channel_overrides_[c], default_sampler(ChannelSpec::Kind::Image)};
+    }
+    passes_.push_back(std::move(pass));
+  }
+  ++generation_;
+  return ReloadStatus::Swapped;
+}
+
+std::vector<fs::path> Project::watch_list() const {
+  std::vector<fs::path> out;
+  for (const auto& [file, scene] : scenes_) {
+    for (fs::path watched : scene->watch_list()) {
+      // A pass served from a .json is watched as the .json.
+      if (is_shadertoy_json(watched.parent_path())) watched = watched.parent_path();
+      if (std::find(out.begin(), out.end(), watched) == out.end()) out.push_back(watched);
+    }
+  }
+  return out;
+}
+
+bool Project::reads_current(const std::vector<Pass>& passes, size_t reader, const fs::path& buffer) {
+  for (size_t i = 0; i < reader && i < passes.size(); ++i)
+    if (passes[i].file == buffer) return true;
+  return false;
+}
+
+bool Project::has_feedback() const {
+  for (size_t i = 0; i < passes_.size(); ++i)
+    for (const ChannelSpec& c : passes_[i].channels)
+      if (c.kind == ChannelSpec::Kind::Pass && !reads_current(passes_, i, c.path)) return true;
+  return false;
+}
+
+bool Project::reads_keyboard() const {
+  for (const Pass& pass : passes_)
+    for (const ChannelSpec& c : pass.channels)
+      if (c.kind == ChannelSpec::Kind::Keyboard) return true;
+  return false;
+}
+
+InputUse Project::inputs_read() const {
+  InputUse use;
+  for (const Pass& pass : passes_) {
+    const InputUse one = rm::inputs_read(*pass.scene->program());
+    use.time = use.time || one.time;
+    use.drag = use.drag || one.drag;
+    use.pointer = use.pointer || one.pointer;
+  }
+  use.time = use.time || has_feedback();
+  return use;
+}
+
+}  // namespace rm

@@ -1,0 +1,93 @@
+// Project: the pass graph. A project is buffer passes and one image pass,
+// each a Scene (its program, kept while a reload fails) with four channel
+// bindings. The image pass is the file the person opened; every shader file
+// a pass names in a `#pragma channelN "FILE"` is a buffer pass
+// (core/channel_spec.h). Buffers draw in the order of their file names
+// (buffer_a.frag before buffer_b.frag, as Shadertoy draws Buffer A before
+// B), then the image. A single shader is a project of one pass, so the
+// window, `render`, `accuracy` and the tests share one path.
+//
+// No GL objects but programs live here: core/frame_graph.h draws a project.
+#pragma once
+#include <array>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "core/host_inputs.h"
+#include "core/scene.h"
+
+namespace rm {
+
+struct Pass {
+  fs::path file;
+  Scene* scene = nullptr;              // owned by the project
+  std::array<ChannelSpec, 4> channels;  // with `self` resolved to a Pass of this file
+  bool is_image = false;
+};
+
+// Where a project's passes come from: a shader file is the image pass and
+// names the rest; a Shadertoy .json (core/shadertoy_json.h) is served from
+// memory as PROJECT.json/image.frag and its neighbours.
+struct ProjectFiles {
+  fs::path image;
+  FileSystem files;
+};
+ProjectFiles project_files(const fs::path& path, const fs::path& media_dir = {});
+
+class Project {
+ public:
+  static constexpr int kMaxBuffers = 16;
+
+  // `channels` are the command line's --channelN images: they replace what
+  // the image pass names for those channels.
+  Project(fs::path image, SourceOptions options, FileSystem files = disk_file_system(),
+          std::array<fs::path, 4> channels = {});
+  Project(const ProjectFiles& from, SourceOptions options, std::array<fs::path, 4> channels = {})
+      : Project(from.image, std::move(options), from.files, std::move(channels)) {}
+
+  // Re-reads every pass. Swapped only when every pass of the new graph built:
+  // a broken pass keeps the whole last good graph running. A pass whose text
+  // did not change is not compiled again.
+  ReloadStatus reload();
+  // -I/-D for every pass, and for the image pass alone (a debug view); they
+  // apply at the next reload().
+  void set_options(SourceOptions all, SourceOptions image_only);
+
+  bool ready() const { return !passes_.empty(); }
+  // In draw order: buffers, then the image pass last. Empty before the first good load.
+  const std::vector<Pass>& passes() const { return passes_; }
+  const Pass& image() const { return passes_.back(); }
+  const Program* image_program() const { return ready() ? image().scene->program() : nullptr; }
+  const Source& image_source() const;
+  const fs::path& path() const { return image_path_; }
+
+  // Errors and warnings of the latest attempt, of every pass.
+  const Diagnostics& diagnostics() const { return diagnostics_; }
+  std::vector<fs::path> watch_list() const;
+  int generation() const { return generation_; }  // counts swaps
+
+  // What changes the picture from frame to frame, over all passes: a pass
+  // that reads a previous frame (itself or a later buffer) is animated.
+  InputUse inputs_read() const;
+  bool reads_keyboard() const;
+  bool has_feedback() const;
+  // Whether pass `reader` sees `buffer`'s output of this frame (it drew
+  // earlier) or of the previous frame (itself, or later in the order).
+  static bool reads_current(const std::vector<Pass>& passes, size_t reader, const fs::path& buffer);
+
+ private:
+  Scene& scene_for(const fs::path& file);
+  bool collect(const fs::path& file, std::vector<fs::path>* order, Diagnostics* diags);
+
+  fs::path image_path_;
+  SourceOptions options_, image_options_;
+  FileSystem files_;
+  std::array<fs::path, 4> channel_overrides_;
+  std::map<fs::path, std::unique_ptr<Scene>> scenes_;
+  std::vector<Pass> passes_;
+  Diagnostics diagnostics_;
+  int generation_ = 0;
+};
+
+}  // namespace rm

@@ -1,0 +1,234 @@
+#include "core/shadertoy_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include "core/channel_spec.h"
+#include "core/files.h"
+
+namespace rm {
+
+namespace {
+
+using nlohmann::json;
+
+// What a missing texture shows instead: value noise, drawn by a pass.
+const char* const kStandInNoise = R"(// Stand-in for a texture that only shadertoy.com serves: value noise.
+float rm_hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 cell = floor(f / 4.0);
+  c = vec4(rm_hash(cell), rm_hash(cell + 17.0), rm_hash(cell + 31.0), 1.0);
+}
+)";
+
+std::string text_of(const json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  return "";
+}
+
+// "Buffer A", "Buf A", "BufferA" -> 0; -1 for anything else.
+int buffer_index_of_name(const std::string& name) {
+  std::string letters;
+  for (char c : name)
+    if (c != ' ') letters += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const std::string prefix : {"buffer", "buf"})
+    if (letters.size() == prefix.size() + 1 && letters.compare(0, prefix.size(), prefix) == 0 &&
+        letters.back() >= 'a' && letters.back() <= 'd')
+      return letters.back() - 'a';
+  return -1;
+}
+
+std::string buffer_file(int index) { return std::string("buffer_") + static_cast<char>('a' + index) + ".frag"; }
+
+Sampler sampler_of(const json& input, ChannelSpec::Kind kind) {
+  Sampler s = default_sampler(kind);
+  if (!input.contains("sampler") || !input["sampler"].is_object()) return s;
+  const json& j = input["sampler"];
+  const std::string filter = j.contains("filter") ? text_of(j["filter"]) : "";
+  const std::string wrap = j.contains("wrap") ? text_of(j["wrap"]) : "";
+  const std::string vflip = j.contains("vflip") ? text_of(j["vflip"]) : "";
+  if (filter == "nearest") s.filter = Sampler::Filter::Nearest;
+  if (filter == "linear") s.filter = Sampler::Filter::Linear;
+  if (filter == "mipmap") s.filter = Sampler::Filter::Mipmap;
+  if (wrap == "clamp") s.wrap = Sampler::Wrap::Clamp;
+  if (wrap == "repeat") s.wrap = Sampler::Wrap::Repeat;
+  if (vflip == "true") s.vflip = true;
+  if (vflip == "false") s.vflip = false;
+  return s;
+}
+
+std::string line_col(const std::string& text, size_t byte) {
+  int line = 1, col = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(col);
+}
+
+}  // namespace
+
+bool is_shadertoy_json(const std::filesystem::path& path) { return path.extension() == ".json"; }
+
+std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,
+                                                    std::string* error) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    const std::string what = e.what();
+    const size_t colon = what.find("syntax error");
+    *error = line_col(text, e.byte > 0 ? e.byte - 1 : 0) + ": " +
+             (colon == std::string::npos ? what : what.substr(colon));
+    return std::nullopt;
+  }
+  // {"Shader": {...}}, the shader itself, or a list of shaders (the first).
+  if (doc.is_array() && !doc.empty()) doc = doc[0];
+  if (doc.is_object() && doc.contains("Shader")) doc = doc["Shader"];
+  if (!doc.is_object() || !doc.contains("renderpass") || !doc["renderpass"].is_array()) {
+    *error = "1:1: not a Shadertoy shader: no \"renderpass\" list";
+    return std::nullopt;
+  }
+  ShadertoyProject project;
+  if (doc.contains("info") && doc["info"].is_object() && doc["info"].contains("name"))
+    project.name = text_of(doc["info"]["name"]);
+
+  // First: which output id is which buffer, and which pass is which file.
+  std::map<std::string, int> buffer_of_output;
+  struct PassText {
+    std::string file;
+    const json* pass;
+  };
+  std::vector<PassText> passes;
+  bool has_common = false;
+  for (const json& pass : doc["renderpass"]) {
+    if (!pass.is_object()) continue;
+    const std::string type = pass.contains("type") ? text_of(pass["type"]) : "";
+    const std::string name = pass.contains("name") ? text_of(pass["name"]) : "";
+    if (type == "common") {
+      project.files["common.glsl"] = pass.contains("code") ? text_of(pass["code"]) : "";
+      has_common = true;
+    } else if (type == "image") {
+      passes.push_back({ShadertoyProject::kImage, &pass});
+    } else if (type == "buffer") {
+      int index = buffer_index_of_name(name);
+      if (index < 0 && pass.contains("outputs") && pass["outputs"].is_array() && !pass["outputs"].empty()) {
+        const std::string id = text_of(pass["outputs"][0].value("id", json()));
+        if (id >= "257" && id <= "260" && id.size() == 3) index = id[2] - '7';
+      }
+      if (index < 0) {
+        project.warnings.push_back("buffer pass '" + name + "' is not Buffer A to D; it is left out");
+        continue;
+      }
+      if (pass.contains("outputs") && pass["outputs"].is_array())
+        for (const json& out : pass["outputs"])
+          if (out.is_object() && out.contains("id")) buffer_of_output[text_of(out["id"])] = index;
+      passes.push_back({buffer_file(index), &pass});
+    } else {
+      project.warnings.push_back("pass '" + name + "' of type '" + type + "' is not supported yet; it is left out");
+    }
+  }
+  bool has_image = false;
+  for (const PassText& p : passes) has_image = has_image || p.file == ShadertoyProject::kImage;
+  if (!has_image) {
+    *error = "1:1: the shader has no image pass";
+    return std::nullopt;
+  }
+
+  for (const PassText& p : passes) {
+    std::string text = has_common ? "#include \"common.glsl\"\n" : "";
+    text += p.pass->contains("code") ? text_of((*p.pass)["code"]) : "";
+    if (!text.empty() && text.back() != '\n') text += '\n';
+    const json& inputs = p.pass->contains("inputs") ? (*p.pass)["inputs"] : json::array();
+    for (const json& input : inputs) {
+      if (!input.is_object()) continue;
+      const int channel = input.contains("channel") && input["channel"].is_number_integer() ? input["channel"].get<int>() : -1;
+      if (channel < 0 || channel > 3) continue;
+      const std::string ctype = input.contains("ctype") ? text_of(input["ctype"]) : input.contains("type") ? text_of(input["type"]) : "";
+      const std::string src = input.contains("src") ? text_of(input["src"]) : input.contains("filepath") ? text_of(input["filepath"]) : "";
+      const std::string where = p.file + " iChannel" + std::to_string(channel);
+      ChannelSpec spec;
+      std::string file;
+      if (ctype == "buffer") {
+        int index = -1;
+        if (auto it = buffer_of_output.find(text_of(input.value("id", json()))); it != buffer_of_output.end()) index = it->second;
+        const size_t previz = src.find("buffer0");
+        if (index < 0 && previz != std::string::npos && previz + 7 < src.size()) index = src[previz + 7] - '0';
+        if (index < 0 || index > 3) {
+          project.warnings.push_back(where + ": a buffer input that names no buffer; it reads black");
+          continue;
+        }
+        spec.kind = ChannelSpec::Kind::Pass;
+        file = buffer_file(index);
+      } else if (ctype == "keyboard") {
+        spec.kind = ChannelSpec::Kind::Keyboard;
+      } else if (ctype == "texture") {
+        spec.kind = ChannelSpec::Kind::Image;
+        const std::string base = std::filesystem::path(src).filename().string();
+        const std::filesystem::path local = media_dir.empty() || base.empty() ? std::filesystem::path() : media_dir / base;
+        std::error_code ec;
+        if (!local.empty() && std::filesystem::is_regular_file(local, ec)) {
+          file = std::filesystem::absolute(local).lexically_normal().string();
+        } else {
+          project.warnings.push_back(where + ": '" + src + "' is not in --media" +
+                                     (media_dir.empty() ? "" : " '" + media_dir.string() + "'") +
+                                     "; value noise stands in for it");
+          spec.kind = ChannelSpec::Kind::Pass;
+          file = "standin_noise.frag";
+          project.files[file] = kStandInNoise;
+        }
+      } else {
+        project.warnings.push_back(where + ": input type '" + ctype + "' is not supported; it reads black");
+        continue;
+      }
+      spec.sampler = sampler_of(input, spec.kind);
+      text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";
+    }
+    project.files[p.file] = text;
+  }
+  return project;
+}
+
+std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path& json_path,
+                                                    const std::filesystem::path& media_dir, std::string* error) {
+  auto text = read_shader_file(json_path, error);
+  if (!text) return std::nullopt;
+  std::string why;
+  auto project = read_shadertoy_json(*text, media_dir, &why);
+  if (!project) *error = json_path.string() + ":" + why;
+  return project;
+}
+
+FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const std::filesystem::path& media_dir) {
+  const std::filesystem::path root = std::filesystem::absolute(json_path).lexically_normal();
+  FileSystem disk = disk_file_system();
+  auto inside = [root](const std::filesystem::path& path) {
+    return std::filesystem::absolute(path).lexically_normal().parent_path() == root;
+  };
+  FileSystem files;
+  files.read = [=](const std::filesystem::path& path, std::string* error) -> std::optional<std::string> {
+    if (!inside(path)) return disk.read(path, error);
+    auto project = read_shadertoy_file(root, media_dir, error);
+    if (!project) return std::nullopt;
+    auto it = project->files.find(path.filename().string());
+    if (it == project->files.end()) {
+      *error = "no such pass in the JSON";
+      return std::nullopt;
+    }
+    return it->second;
+  };
+  files.exists = [=](const std::filesystem::path& path) {
+    if (!inside(path)) return disk.exists(path);
+    std::string ignored;
+    auto project = read_shadertoy_file(root, media_dir, &ignored);
+    return project && project->files.count(path.filename().string()) > 0;
+  };
+  return files;
+}
+
+}  // namespace rm

@@ -1,0 +1,42 @@
+// Shadertoy's JSON export ({"Shader": {"info", "renderpass": [...]}}, the
+// shape shadertoy.com's API returns) read into the files of a raymarching
+// project: image.frag, buffer_a.frag ... buffer_d.frag and common.glsl, each
+// pass naming its inputs with #pragma channelN (core/channel_spec.h). The
+// same files run straight from the JSON (an in-memory tree under
+// PROJECT.json/) and are what `import` writes for editing with hot reload.
+#pragma once
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/source.h"
+
+namespace rm {
+
+struct ShadertoyProject {
+  std::string name;                           // info.name, or ""
+  std::map<std::string, std::string> files;   // file name -> text
+  std::vector<std::string> warnings;          // one line each: what runs with a stand-in or not at all
+  static constexpr const char* kImage = "image.frag";
+};
+
+// Reads the JSON text. Media that only shadertoy.com serves (/media/a/NAME)
+// is looked up by file name in `media_dir`; a missing one is replaced by a
+// stand-in and warned about. nullopt with *error ("LINE:COL: why") on JSON
+// that does not parse or holds no image pass.
+std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,
+                                                    std::string* error);
+
+// Reads a .json file from disk (a regular file, within the shader size limit).
+std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path& json,
+                                                    const std::filesystem::path& media_dir, std::string* error);
+
+bool is_shadertoy_json(const std::filesystem::path& path);
+
+// Files under `json`/ come from the JSON file, read again on every call so a
+// save of the JSON reloads; everything else comes from the disk.
+FileSystem shadertoy_file_system(const std::filesystem::path& json, const std::filesystem::path& media_dir);
+
+}  // namespace rm

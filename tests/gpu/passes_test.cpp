@@ -1,0 +1,185 @@
+// The pass graph on the GPU: buffers with feedback, Shadertoy's order of
+// reads, sampler settings, the keyboard texture, resize, restart and reloads
+// that touch one pass.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/frame_graph.h"
+#include "core/project.h"
+#include "egl_fixture.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+class Passes : public test::EglTest {
+ protected:
+  // Loads the project whose image pass is `image` (a file in dir_).
+  Project& load(const std::string& image) {
+    project_ = std::make_unique<Project>(dir_ / image, SourceOptions{});
+    EXPECT_EQ(project_->reload(), ReloadStatus::Swapped) << join(project_->diagnostics());
+    std::string error;
+    EXPECT_TRUE(graph_.update(*project_, &error)) << error;
+    return *project_;
+  }
+  // Draws frame `frame` (buffers, then the image) and reads the image back.
+  Image frame(int frame, glm::ivec2 size = {4, 4}) {
+    FrameInputs in;
+    in.resolution = glm::vec3(size, 1.0f);
+    in.frame = frame;
+    return graph_.render_frame(*project_, in, size);
+  }
+
+  static glm::vec4 at(const Image& image, int x, int y) { return glm::make_vec4(image.pixel(x, y)); }
+
+  TempDir dir_;
+  Renderer renderer_;
+  FrameGraph graph_{renderer_};
+  std::unique_ptr<Project> project_;
+};
+
+const char* kShowChannel0 = "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                            "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0); }\n";
+
+TEST_F(Passes, ABufferThatAddsOnePerFrameReadsNAtFrameN) {
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 self filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + 1.0; }\n");
+  write_file(dir_ / "image.frag", kShowChannel0);
+  Project& project = load("image.frag");
+  ASSERT_EQ(project.passes().size(), 2u);
+  EXPECT_TRUE(project.has_feedback());
+  EXPECT_TRUE(project.inputs_read().time) << "feedback animates a shader that reads no clock";
+  for (int n = 0; n < 5; ++n) EXPECT_EQ(at(frame(n), 1, 1)[0], float(n + 1)) << "frame " << n << " read " << n;
+}
+
+// Buffer A reads B, drawn after it: B's previous frame. B reads A, drawn
+// before it: A's frame now. A(n) = B(n-1) + 1 and B(n) = 2 A(n), from zero.
+TEST_F(Passes, LaterBuffersAreReadFromThePreviousFrameEarlierOnesFromThisOne) {
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 \"buffer_b.frag\" filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + 1.0; }\n");
+  write_file(dir_ / "buffer_b.frag", "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = 2.0 * texelFetch(iChannel0, ivec2(f), 0); }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                                  "#pragma channel1 \"buffer_b.frag\" filter=nearest\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n"
+                                  "  c = vec4(texelFetch(iChannel0, ivec2(f), 0).x, texelFetch(iChannel1, ivec2(f), 0).x, 0, 1);\n}\n");
+  Project& project = load("image.frag");
+  ASSERT_EQ(project.passes().size(), 3u);
+  EXPECT_EQ(project.passes()[0].file.filename(), "buffer_a.frag");
+  const float a[] = {1, 3, 7, 15}, b[] = {2, 6, 14, 30};
+  for (int n = 0; n < 4; ++n) {
+    const glm::vec4 p = at(frame(n), 0, 0);
+    EXPECT_EQ(p.x, a[n]) << "A at frame " << n;
+    EXPECT_EQ(p.y, b[n]) << "B at frame " << n;
+  }
+}
+
+// A buffer of 0/1 columns: nearest reads a texel, linear blends two, and the
+// mipmap filter at a coarse level averages them all.
+TEST_F(Passes, BuffersAreSampledWithTheReadersSettings) {
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(mod(floor(f.x), 2.0)); }\n");
+  write_file(dir_ / "image.frag",
+             "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+             "#pragma channel1 \"buffer_a.frag\" filter=linear\n"
+             "#pragma channel2 \"buffer_a.frag\" filter=mipmap\n"
+             "void mainImage(out vec4 c, in vec2 f) {\n"
+             "  vec2 uv = vec2(1.0, 0.5) / iChannelResolution[0].xy;  // the border of texels 0 and 1\n"
+             "  c = vec4(texture(iChannel0, uv + vec2(0.1, 0) / iChannelResolution[0].xy).x,\n"
+             "           texture(iChannel1, uv).x, textureLod(iChannel2, vec2(0.5), 3.0).x, 1);\n}\n");
+  load("image.frag");
+  const glm::vec4 p = at(frame(0, {8, 8}), 0, 0);
+  EXPECT_EQ(p.x, 1.0f) << "nearest: texel 1";
+  EXPECT_NEAR(p.y, 0.5f, 1e-3f) << "linear: half of each";
+  EXPECT_NEAR(p.z, 0.5f, 1e-3f) << "mipmap level 3 of 8x8: the average";
+}
+
+// Row 0: down; row 1: pressed in this frame; row 2: toggled.
+TEST_F(Passes, TheKeyboardTextureHasShadertoysThreeRows) {
+  write_file(dir_ / "image.frag", "#pragma channel0 keyboard\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n"
+                                  "  c = vec4(texelFetch(iChannel0, ivec2(65, 0), 0).x, texelFetch(iChannel0, ivec2(65, 1), 0).x,\n"
+                                  "           texelFetch(iChannel0, ivec2(65, 2), 0).x, iChannelResolution[0].x);\n}\n");
+  Project& project = load("image.frag");
+  EXPECT_TRUE(project.reads_keyboard());
+  EXPECT_EQ(at(frame(0), 0, 0), glm::vec4(0, 0, 0, 256));
+  graph_.keyboard().press(65);
+  EXPECT_EQ(at(frame(1), 0, 0), glm::vec4(1, 1, 1, 256)) << "pressed";
+  graph_.keyboard().end_frame();
+  EXPECT_EQ(at(frame(2), 0, 0), glm::vec4(1, 0, 1, 256)) << "held";
+  graph_.keyboard().release(65);
+  EXPECT_EQ(at(frame(3), 0, 0), glm::vec4(0, 0, 1, 256)) << "released, still toggled";
+  graph_.keyboard().press(65);
+  graph_.keyboard().release(65);
+  EXPECT_EQ(at(frame(4), 0, 0), glm::vec4(0, 1, 0, 256)) << "tapped: pressed this frame, toggled back";
+}
+
+TEST_F(Passes, AResizeKeepsTheContentWhereItFitsAndRestartClears) {
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 self filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + 1.0; }\n");
+  write_file(dir_ / "image.frag", kShowChannel0);
+  load("image.frag");
+  for (int n = 0; n < 3; ++n) frame(n);
+  const Image bigger = frame(3, {8, 8});
+  EXPECT_EQ(at(bigger, 1, 6)[0], 4.0f) << "kept, then one more";
+  EXPECT_EQ(at(bigger, 6, 6)[0], 1.0f) << "new texels start at zero";
+  graph_.restart();
+  EXPECT_EQ(at(frame(0, {8, 8}), 1, 6)[0], 1.0f);
+}
+
+TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
+  write_file(dir_ / "common.glsl", "float step_of() { return 1.0; }\n");
+  write_file(dir_ / "buffer_a.frag", "#include \"common.glsl\"\n#pragma channel0 self filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + step_of(); }\n");
+  write_file(dir_ / "buffer_b.frag", "#include \"common.glsl\"\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = vec4(step_of()); }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                                  "#pragma channel1 \"buffer_b.frag\" filter=nearest\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n"
+                                  "  c = vec4(texelFetch(iChannel0, ivec2(f), 0).x, texelFetch(iChannel1, ivec2(f), 0).x, 0, 1);\n}\n");
+  Project& project = load("image.frag");
+  frame(0);
+  frame(1);
+  auto generations = [&] {
+    std::vector<int> out;
+    for (const Pass& pass : project.passes()) out.push_back(pass.scene->generation());
+    return out;
+  };
+  const std::vector<int> before = generations();
+  write_file(dir_ / "buffer_b.frag", "#include \"common.glsl\"\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = vec4(5.0 * step_of()); }\n");
+  ASSERT_EQ(project.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(generations(), (std::vector<int>{before[0], before[1] + 1, before[2]}));
+  EXPECT_EQ(at(frame(2), 0, 0), glm::vec4(3, 5, 0, 1)) << "a reload keeps buffer A's count";
+
+  // common.glsl changes A and B; B no longer compiles, so neither swaps.
+  write_file(dir_ / "common.glsl", "float step_of() { return 2.0; }\n");
+  write_file(dir_ / "buffer_b.frag", "#include \"common.glsl\"\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = vec4(5.0 * step_of() + missing); }\n");
+  EXPECT_EQ(project.reload(), ReloadStatus::Failed);
+  ASSERT_EQ(count_errors(project.diagnostics()), 1);
+  EXPECT_EQ(project.diagnostics()[0].path, (dir_ / "buffer_b.frag").string());
+  EXPECT_EQ(project.diagnostics()[0].line, 2);
+  EXPECT_EQ(at(frame(3), 0, 0), glm::vec4(4, 5, 0, 1)) << "the last good graph: A still adds 1";
+  write_file(dir_ / "buffer_b.frag", "#include \"common.glsl\"\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = vec4(5.0 * step_of()); }\n");
+  EXPECT_EQ(project.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(at(frame(4), 0, 0), glm::vec4(6, 10, 0, 1)) << "both new: A adds 2, B is 10";
+}
+
+TEST_F(Passes, RenderDrawsEveryFrameBeforeTheOneAskedFor) {
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 self filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + 1.0; }\n");
+  write_file(dir_ / "image.frag", kShowChannel0);
+  const auto out = dir_ / "out.exr";
+  const test::Outcome r = test::run_binary("render " + (dir_ / "image.frag").string() + " -o " + out.string() +
+                                           " --size 4x4 --frame 9");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(test::read_pixels(out)[0], 10.0f) << "frames 0 to 9 each added one";
+}
+
+}  // namespace
+}  // namespace rm
