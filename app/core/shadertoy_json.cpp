@@ -154,6 +154,8 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
       const std::string where = p.file + " iChannel" + std::to_string(channel);
       ChannelSpec spec;
       std::string file;
+      Sampler sampler = sampler_of(input, ctype == "texture" ? ChannelSpec::Kind::Image
+                                          : ctype == "keyboard" ? ChannelSpec::Kind::Keyboard : ChannelSpec::Kind::Pass);
       if (ctype == "buffer") {
         int index = -1;
         if (auto it = buffer_of_output.find(text_of(input.value("id", json()))); it != buffer_of_output.end()) index = it->second;
@@ -186,7 +188,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         project.warnings.push_back(where + ": input type '" + ctype + "' is not supported; it reads black");
         continue;
       }
-      spec.sampler = sampler_of(input, spec.kind);
+      spec.sampler = sampler;
       text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";
     }
     project.files[p.file] = text;

@@ -1,5 +1,6 @@
 // Preprocessor: includes, include-once, cycles, missing files, BOM, the
 // three shader kinds, and the line map that keeps user line numbers true.
+#include "core/check.h"
 #include "core/source.h"
 
 #include <gtest/gtest.h>
@@ -322,6 +323,40 @@ TEST(Source, OnlyRegularFilesUpToTheLimitAreRead) {
     ASSERT_EQ(s.errors.size(), 1u) << name;
     EXPECT_EQ(s.errors[0].str(), (dir / name).string() + says);
   }
+}
+
+// Real Shadertoy shaders carry a main() for other hosts in an inactive block:
+// the kind is decided on what the compiler sees, with the -D macros.
+TEST(Source, AMainInAnInactiveBlockLeavesAShadertoyShader) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTime); }\n"
+                                 "#ifdef GLSLVIEWER\nvoid main() { mainImage(gl_FragColor, gl_FragCoord.xy); }\n#endif\n");
+  EXPECT_EQ(preprocess(dir / "scene.frag", {}).kind, ShaderKind::Shadertoy);
+  SourceOptions viewer;
+  viewer.defines.push_back({"GLSLVIEWER", ""});
+  EXPECT_EQ(preprocess(dir / "scene.frag", viewer).kind, ShaderKind::Legacy) << "with the block active, main() is its own";
+  EXPECT_TRUE(validate(preprocess(dir / "scene.frag", {})).empty());
+}
+
+TEST(Source, ChannelPragmasNameBuffersSelfTheKeyboardAndSettings) {
+  TempDir dir;
+  write_file(dir / "a.frag", kMain);
+  write_file(dir / "scene.frag", "#pragma channel0 \"a.frag\" filter=nearest wrap=repeat\n#pragma channel1 self vflip=false\n"
+                                 "#pragma channel2 keyboard  // the keys\n" + std::string(kMain));
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.channels[0].kind, ChannelSpec::Kind::Pass);
+  EXPECT_EQ(s.channels[0].path, dir / "a.frag");
+  EXPECT_EQ(s.channels[0].sampler.filter, Sampler::Filter::Nearest);
+  EXPECT_EQ(s.channels[0].sampler.wrap, Sampler::Wrap::Repeat);
+  EXPECT_EQ(s.channels[1].kind, ChannelSpec::Kind::Self);
+  EXPECT_FALSE(s.channels[1].sampler.vflip);
+  EXPECT_EQ(s.channels[2].kind, ChannelSpec::Kind::Keyboard);
+  write_file(dir / "bad.frag", "\n#pragma channel1 self filter=fuzzy\n" + std::string(kMain));
+  Source bad = preprocess(dir / "bad.frag", {});
+  ASSERT_EQ(bad.errors.size(), 1u);
+  EXPECT_EQ(bad.errors[0].line, 2);
+  EXPECT_NE(bad.errors[0].message.find("unknown channel setting 'filter=fuzzy'"), std::string::npos) << bad.errors[0].message;
 }
 
 }  // namespace

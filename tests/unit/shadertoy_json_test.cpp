@@ -1,0 +1,99 @@
+// Shadertoy's JSON export read into project files: pass names, sparse and
+// unordered inputs, sampler settings, media, unknown types, malformed JSON.
+#include <gtest/gtest.h>
+
+#include "core/shadertoy_json.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+std::optional<ShadertoyProject> read(const std::string& text, std::string* error, const fs::path& media = {}) {
+  return read_shadertoy_json(text, media, error);
+}
+
+const char* kProject = R"({"Shader": {
+  "info": {"id": "x", "name": "Two buffers"},
+  "renderpass": [
+    {"type": "image", "name": "Image", "code": "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }",
+     "inputs": [
+       {"id": 258, "ctype": "buffer", "channel": 3, "sampler": {"filter": "mipmap", "wrap": "repeat", "vflip": "false"}},
+       {"id": 257, "src": "/media/previz/buffer00.png", "ctype": "buffer", "channel": 1},
+       {"id": 33, "ctype": "keyboard", "channel": 0}],
+     "outputs": [{"id": 37, "channel": 0}]},
+    {"type": "buffer", "name": "Buffer B", "code": "B", "inputs": [], "outputs": [{"id": 258, "channel": 0}]},
+    {"type": "buffer", "name": "Buf A", "code": "A", "inputs": [], "outputs": [{"id": 257, "channel": 0}]},
+    {"type": "common", "name": "Common", "code": "const float K = 1.0;"}
+  ]}})";
+
+TEST(ShadertoyJson, ReadsEveryPassAndInputInBothSpellings) {
+  std::string error;
+  auto p = read(kProject, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->name, "Two buffers");
+  EXPECT_TRUE(p->warnings.empty());
+  ASSERT_EQ(p->files.size(), 4u);
+  EXPECT_EQ(p->files["common.glsl"], "const float K = 1.0;");
+  EXPECT_EQ(p->files["buffer_a.frag"], "#include \"common.glsl\"\nA\n");
+  EXPECT_EQ(p->files["buffer_b.frag"], "#include \"common.glsl\"\nB\n");
+  // The code first, so its lines keep their numbers after the include;
+  // the inputs as pragmas, only the settings that differ from the default.
+  EXPECT_EQ(p->files["image.frag"],
+            "#include \"common.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1); }\n"
+            "#pragma channel3 \"buffer_b.frag\" filter=mipmap wrap=repeat vflip=false\n"
+            "#pragma channel1 \"buffer_a.frag\"\n"
+            "#pragma channel0 keyboard\n");
+}
+
+TEST(ShadertoyJson, AcceptsTheBareShaderAndAListOfShaders) {
+  std::string error;
+  const std::string bare = R"({"renderpass": [{"type": "image", "code": "x"}]})";
+  auto p = read(bare, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["image.frag"], "x\n");
+  EXPECT_TRUE(read("[" + bare + "]", &error)) << error;
+}
+
+TEST(ShadertoyJson, MediaComeFromTheMediaDirectoryOrAStandIn) {
+  test::TempDir media;
+  test::write_file(media / "abc.png", "not read here");
+  const std::string json = R"({"renderpass": [{"type": "image", "code": "x", "inputs": [
+      {"ctype": "texture", "src": "/media/a/abc.png", "channel": 0},
+      {"ctype": "texture", "src": "/media/a/missing.jpg", "channel": 2}]}]})";
+  std::string error;
+  auto p = read(json, &error, media.path());
+  ASSERT_TRUE(p) << error;
+  EXPECT_NE(p->files["image.frag"].find("#pragma channel0 \"" + (media / "abc.png").string() + "\"\n"), std::string::npos);
+  EXPECT_NE(p->files["image.frag"].find("#pragma channel2 \"standin_noise.frag\" filter=mipmap wrap=repeat\n"),
+            std::string::npos);
+  EXPECT_EQ(p->files.count("standin_noise.frag"), 1u);
+  ASSERT_EQ(p->warnings.size(), 1u);
+  EXPECT_NE(p->warnings[0].find("'/media/a/missing.jpg' is not in --media"), std::string::npos) << p->warnings[0];
+}
+
+TEST(ShadertoyJson, UnknownPassAndInputTypesAreOneWarningEachAndTheRestRuns) {
+  const std::string json = R"({"renderpass": [
+      {"type": "sound", "name": "Sound", "code": "s"},
+      {"type": "image", "code": "x", "inputs": [
+        {"ctype": "webcam", "channel": 0}, {"ctype": "music", "channel": 1}, {"ctype": "video", "channel": 2}]}]})";
+  std::string error;
+  auto p = read(json, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["image.frag"], "x\n");
+  ASSERT_EQ(p->warnings.size(), 4u);
+  EXPECT_NE(p->warnings[0].find("type 'sound' is not supported"), std::string::npos);
+  EXPECT_NE(p->warnings[1].find("input type 'webcam' is not supported"), std::string::npos);
+}
+
+TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
+  std::string error;
+  EXPECT_FALSE(read("{\"Shader\": {\n  \"renderpass\": [,]}}", &error));
+  EXPECT_EQ(error.substr(0, 5), "2:18:") << error;  // the comma
+  EXPECT_FALSE(read("{\"renderpass\": [{\"type\": \"buffer\", \"name\": \"Buf A\", \"code\": \"\"}]}", &error));
+  EXPECT_EQ(error, "1:1: the shader has no image pass");
+  EXPECT_FALSE(read("[1, 2]", &error));
+  EXPECT_EQ(error, "1:1: not a Shadertoy shader: no \"renderpass\" list");
+}
+
+}  // namespace
+}  // namespace rm
