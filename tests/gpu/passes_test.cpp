@@ -181,5 +181,15 @@ TEST_F(Passes, RenderDrawsEveryFrameBeforeTheOneAskedFor) {
   EXPECT_EQ(test::read_pixels(out)[0], 10.0f) << "frames 0 to 9 each added one";
 }
 
+// A Shadertoy JSON export runs as it is: "Buf A" adds Common's STEP each
+// frame and the image shows it over 255.
+TEST_F(Passes, AShadertoyJsonExportRunsAsItIs) {
+  const auto out = dir_ / "out.exr";
+  const test::Outcome r = test::run_binary("render " + std::string(RM_TEST_DATA_DIR) + "/shadertoy/counter.json -o " +
+                                           out.string() + " --size 4x4 --frame 4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FLOAT_EQ(test::read_pixels(out)[0], 5.0f / 255.0f);
+}
+
 }  // namespace
 }  // namespace rm
