@@ -7,8 +7,10 @@
 set -euo pipefail
 source_dir="$(cd "$(dirname "$0")" && pwd)"
 build_dir="$1"
-CXX=clang++ cmake -S "$source_dir" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build_dir" >/dev/null
+# Quiet when it builds; the whole log when it does not.
+quietly() { local log; log=$("$@" 2>&1) || { printf '%s\n' "$log" >&2; echo "smoke.sh: failed: $*" >&2; return 1; }; }
+CXX=clang++ quietly cmake -S "$source_dir" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+quietly cmake --build "$build_dir"
 rm -rf "$build_dir/corpus" && cp -r "$source_dir/corpus" "$build_dir/corpus"
 cd "$build_dir"
 ./source_fuzz corpus/* 2>&1 | tail -1

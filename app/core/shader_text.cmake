@@ -1,0 +1,16 @@
+# The part of the core that reads, preprocesses and validates shader text:
+# what `check` runs and what the fuzz targets (tests/fuzz) build with clang.
+# One list, so that a new dependency of core/source is added in one place.
+# program.cpp comes along because the host-input table sets uniforms on a
+# Program; the fuzz targets never call it, but it links against libepoxy.
+set(RM_SHADER_TEXT_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/source.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/files.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/lexing.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sandbox.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/diagnostics.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/check.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/channel_spec.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/host_inputs.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/program.cpp
+)
