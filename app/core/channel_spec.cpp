@@ -14,10 +14,19 @@ std::string_view next_word(std::string_view text, size_t* at) {
   return text.substr(begin, *at - begin);
 }
 
-bool read_setting(std::string_view word, Sampler* s, std::string* error) {
+bool read_setting(std::string_view word, ChannelSpec* spec, std::string* error) {
   const size_t eq = word.find('=');
   const std::string_view key = word.substr(0, eq), value = eq == std::string_view::npos ? "" : word.substr(eq + 1);
-  if (key == "filter" && value == "nearest") s->filter = Sampler::Filter::Nearest;
+  Sampler* s = &spec->sampler;
+  if (key == "size" && spec->kind == ChannelSpec::Kind::Pass && spec->shape == ChannelSpec::Shape::Cube) {
+    int size = 0;
+    for (char c : value) size = lexing::is_digit(c) && size <= 16384 ? size * 10 + (c - '0') : -1;
+    if (value.empty() || size < 1 || size > 4096) {
+      *error = "size=N expects a face size from 1 to 4096, not '" + std::string(value) + "'";
+      return false;
+    }
+    spec->cube_size = size;
+  } else if (key == "filter" && value == "nearest") s->filter = Sampler::Filter::Nearest;
   else if (key == "filter" && value == "linear") s->filter = Sampler::Filter::Linear;
   else if (key == "filter" && value == "mipmap") s->filter = Sampler::Filter::Mipmap;
   else if (key == "wrap" && value == "clamp") s->wrap = Sampler::Wrap::Clamp;
@@ -26,7 +35,7 @@ bool read_setting(std::string_view word, Sampler* s, std::string* error) {
   else if (key == "vflip" && value == "false") s->vflip = false;
   else {
     *error = "unknown channel setting '" + std::string(word) +
-             "' (filter=nearest|linear|mipmap, wrap=clamp|repeat, vflip=true|false)";
+             "' (cube, volume, filter=nearest|linear|mipmap, wrap=clamp|repeat, vflip=true|false, size=N for a cube pass)";
     return false;
   }
   return true;
@@ -34,9 +43,13 @@ bool read_setting(std::string_view word, Sampler* s, std::string* error) {
 
 }  // namespace
 
-Sampler default_sampler(ChannelSpec::Kind kind) {
+Sampler default_sampler(ChannelSpec::Kind kind, ChannelSpec::Shape shape) {
   using K = ChannelSpec::Kind;
   Sampler s;
+  // Cube maps are not flipped (GL's faces put their first row at the top),
+  // and volumes have no up.
+  if (shape != ChannelSpec::Shape::Flat) s.vflip = false;
+  if (kind == K::Image && shape == ChannelSpec::Shape::Volume) s.filter = Sampler::Filter::Linear;
   if (kind == K::Pass || kind == K::Self) {
     s.filter = Sampler::Filter::Linear;
     s.wrap = Sampler::Wrap::Clamp;
@@ -79,11 +92,29 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
     }
   }
   spec.sampler = default_sampler(spec.kind);
+  bool first = true;
   while (true) {
     const size_t before = at;
     const std::string_view word = next_word(text, &at);
     if (word.empty() || lexing::nothing_but_comment(text.substr(before))) break;
-    if (!read_setting(word, &spec.sampler, error)) return std::nullopt;
+    // The shape comes first: a cube map's default sampler differs from an image's.
+    const bool shape_word = word == "cube" || word == "volume";
+    if (shape_word && !first) {
+      *error = "'" + std::string(word) + "' goes right after the file name";
+      return std::nullopt;
+    }
+    if (shape_word && (spec.kind == ChannelSpec::Kind::Keyboard ||
+                       (word == "volume" && spec.kind != ChannelSpec::Kind::Image))) {
+      *error = word == "cube" ? "the keyboard is not a cube map" : "a volume is read from a file (.bin or stacked slices)";
+      return std::nullopt;
+    }
+    first = false;
+    if (shape_word) {
+      spec.shape = word == "cube" ? ChannelSpec::Shape::Cube : ChannelSpec::Shape::Volume;
+      spec.sampler = default_sampler(spec.kind, spec.shape);
+      continue;
+    }
+    if (!read_setting(word, &spec, error)) return std::nullopt;
   }
   return spec;
 }
@@ -91,13 +122,24 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
 std::string channel_spec_text(const ChannelSpec& spec, const std::string& file) {
   using K = ChannelSpec::Kind;
   std::string out = spec.kind == K::Self ? "self" : spec.kind == K::Keyboard ? "keyboard" : "\"" + file + "\"";
-  const Sampler d = default_sampler(spec.kind), s = spec.sampler;
+  if (spec.shape == ChannelSpec::Shape::Cube) out += " cube";
+  if (spec.shape == ChannelSpec::Shape::Volume) out += " volume";
+  if (spec.cube_size > 0) out += " size=" + std::to_string(spec.cube_size);
+  const Sampler d = default_sampler(spec.kind, spec.shape), s = spec.sampler;
   if (s.filter != d.filter)
     out += s.filter == Sampler::Filter::Nearest ? " filter=nearest"
            : s.filter == Sampler::Filter::Linear ? " filter=linear" : " filter=mipmap";
   if (s.wrap != d.wrap) out += s.wrap == Sampler::Wrap::Clamp ? " wrap=clamp" : " wrap=repeat";
   if (s.vflip != d.vflip) out += s.vflip ? " vflip=true" : " vflip=false";
   return out;
+}
+
+const char* glsl_sampler_type(ChannelSpec::Shape shape) {
+  switch (shape) {
+    case ChannelSpec::Shape::Cube: return "samplerCube";
+    case ChannelSpec::Shape::Volume: return "sampler3D";
+    default: return "sampler2D";
+  }
 }
 
 const char* to_string(ChannelSpec::Kind kind) {

@@ -3,9 +3,13 @@
 //   #pragma channel1 "buffer_a.frag"            a buffer pass (.frag/.glsl)
 //   #pragma channel2 self                       this pass's previous frame
 //   #pragma channel3 keyboard                   the 256x3 keyboard texture
+//   #pragma channel0 "sky.png" cube             a cube map: six faces, a cross or a panorama
+//   #pragma channel0 "cube_a.frag" cube         a Cube A pass (mainCubemap)
+//   #pragma channel1 "noise.bin" volume         a volume (sampler3D)
 // followed by Shadertoy's sampler settings where the defaults do not fit:
 //   filter=nearest|linear|mipmap  wrap=clamp|repeat  vflip=true|false
-// No GL here: the core's graph (core/passes.h) turns specs into textures.
+// and, for a Cube A pass, its face size: size=N (1024, as on Shadertoy).
+// No GL here: the core's graph (core/frame_graph.h) turns specs into textures.
 #pragma once
 #include <filesystem>
 #include <optional>
@@ -19,20 +23,28 @@ struct Sampler {
   enum class Wrap { Clamp, Repeat };
   Filter filter = Filter::Mipmap;
   Wrap wrap = Wrap::Repeat;
-  bool vflip = true;  // true: an image's first row is the picture's top; a buffer is read as it was drawn
+  // true: a flat image's first row is the picture's top (false: its
+  // bottom). Buffers are read as they were drawn, and cube faces as GL lays
+  // them out, whatever it says.
+  bool vflip = true;
   bool operator==(const Sampler&) const = default;
 };
 
 struct ChannelSpec {
   enum class Kind { None, Image, Pass, Self, Keyboard };
+  // What the shader samples: the prelude declares sampler2D, samplerCube or sampler3D.
+  enum class Shape { Flat, Cube, Volume };
+  static constexpr int kDefaultCubeSize = 1024;
   Kind kind = Kind::None;
+  Shape shape = Shape::Flat;
   std::filesystem::path path;  // Image and Pass: absolute
   Sampler sampler;
+  int cube_size = 0;  // a Cube A pass's face size when the pragma gives one; 0: the default
   bool operator==(const ChannelSpec&) const = default;
 };
 
 // Shadertoy's default sampler for each kind of input.
-Sampler default_sampler(ChannelSpec::Kind kind);
+Sampler default_sampler(ChannelSpec::Kind kind, ChannelSpec::Shape shape = ChannelSpec::Shape::Flat);
 
 // Whether a named file is a shader (a buffer pass) rather than an image.
 bool is_shader_file(const std::filesystem::path& path);
@@ -48,5 +60,6 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
 std::string channel_spec_text(const ChannelSpec& spec, const std::string& file);
 
 const char* to_string(ChannelSpec::Kind kind);
+const char* glsl_sampler_type(ChannelSpec::Shape shape);  // "sampler2D", "samplerCube", "sampler3D"
 
 }  // namespace rm

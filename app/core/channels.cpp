@@ -4,7 +4,9 @@
 
 #include <algorithm>
 
+#include "core/cube_map.h"
 #include "core/files.h"
+#include "core/volume.h"
 
 namespace rm {
 
@@ -62,30 +64,85 @@ std::optional<Image> load_channel_image(const std::filesystem::path& path, std::
   return image;
 }
 
-const ImageTextures::Entry* ImageTextures::get(const std::filesystem::path& path, std::string* error) {
-  if (auto it = entries_.find(path); it != entries_.end()) return &it->second;
-  auto file_image = load_channel_image(path, error);
-  if (!file_image) return nullptr;
-  const Image image = file_image->flipped();  // GL's row 0 is the bottom
-  Entry entry;
-  entry.texture = gl::make_texture(GL_TEXTURE_2D);
+namespace {
+
+int mip_levels(int width, int height) {
   int levels = 1;
-  for (int size = std::max(image.width, image.height); size > 1; size /= 2) ++levels;
-  glTextureStorage2D(entry.texture.get(), levels, GL_RGBA16F, image.width, image.height);
+  for (int size = std::max(width, height); size > 1; size /= 2) ++levels;
+  return levels;
+}
+
+std::optional<ImageTextures::Entry> flat_texture(const ChannelSpec& spec, std::string* error) {
+  auto file_image = load_channel_image(spec.path, error);
+  if (!file_image) return std::nullopt;
+  // GL's row 0 is the bottom: a file read right side up is flipped for it.
+  const Image image = spec.sampler.vflip ? file_image->flipped() : std::move(*file_image);
+  ImageTextures::Entry entry;
+  entry.texture = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(entry.texture.get(), mip_levels(image.width, image.height), GL_RGBA16F, image.width, image.height);
   glTextureSubImage2D(entry.texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
   glGenerateTextureMipmap(entry.texture.get());
   entry.resolution = glm::vec3(image.width, image.height, 1.0f);
-  return &entries_.emplace(path, std::move(entry)).first->second;
+  return entry;
 }
 
-const ImageTextures::Entry* ImageTextures::find(const std::filesystem::path& path) const {
-  auto it = entries_.find(path);
+std::optional<ImageTextures::Entry> cube_texture(const ChannelSpec& spec, std::string* error) {
+  auto cube = load_cube_map(spec.path, error);
+  if (!cube) return std::nullopt;
+  ImageTextures::Entry entry;
+  entry.target = GL_TEXTURE_CUBE_MAP;
+  entry.texture = gl::make_texture(GL_TEXTURE_CUBE_MAP);
+  glTextureStorage2D(entry.texture.get(), mip_levels(cube->size, cube->size), GL_RGBA16F, cube->size, cube->size);
+  for (int f = 0; f < 6; ++f)  // faces upload unflipped: their first row is GL's t = 0
+    glTextureSubImage3D(entry.texture.get(), 0, 0, 0, f, cube->size, cube->size, 1, GL_RGBA, GL_FLOAT,
+                        cube->faces[static_cast<size_t>(f)].rgba.data());
+  glGenerateTextureMipmap(entry.texture.get());
+  entry.resolution = glm::vec3(cube->size, cube->size, 1.0f);
+  return entry;
+}
+
+std::optional<ImageTextures::Entry> volume_texture(const ChannelSpec& spec, std::string* error) {
+  auto volume = load_volume(spec.path, error);
+  if (!volume) return std::nullopt;
+  const glm::ivec3 n = volume->size;
+  ImageTextures::Entry entry;
+  entry.target = GL_TEXTURE_3D;
+  entry.texture = gl::make_texture(GL_TEXTURE_3D);
+  int levels = 1;
+  for (int size = std::max({n.x, n.y, n.z}); size > 1; size /= 2) ++levels;
+  glTextureStorage3D(entry.texture.get(), levels, GL_RGBA16F, n.x, n.y, n.z);
+  glTextureSubImage3D(entry.texture.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RGBA, GL_FLOAT, volume->rgba.data());
+  glGenerateTextureMipmap(entry.texture.get());
+  entry.resolution = glm::vec3(n);
+  return entry;
+}
+
+}  // namespace
+
+ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
+  return {spec.path, spec.shape, spec.shape == ChannelSpec::Shape::Flat && spec.sampler.vflip};
+}
+
+const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::string* error) {
+  const Key key = key_of(spec);
+  if (auto it = entries_.find(key); it != entries_.end()) return &it->second;
+  std::optional<Entry> entry = spec.shape == ChannelSpec::Shape::Cube     ? cube_texture(spec, error)
+                               : spec.shape == ChannelSpec::Shape::Volume ? volume_texture(spec, error)
+                                                                          : flat_texture(spec, error);
+  if (!entry) return nullptr;
+  return &entries_.emplace(key, std::move(*entry)).first->second;
+}
+
+const ImageTextures::Entry* ImageTextures::find(const ChannelSpec& spec) const {
+  auto it = entries_.find(key_of(spec));
   return it == entries_.end() ? nullptr : &it->second;
 }
 
-void ImageTextures::keep_only(const std::vector<std::filesystem::path>& used) {
+void ImageTextures::keep_only(const std::vector<ChannelSpec>& used) {
+  std::vector<Key> keys;
+  for (const ChannelSpec& spec : used) keys.push_back(key_of(spec));
   for (auto it = entries_.begin(); it != entries_.end();)
-    it = std::find(used.begin(), used.end(), it->first) == used.end() ? entries_.erase(it) : std::next(it);
+    it = std::find(keys.begin(), keys.end(), it->first) == keys.end() ? entries_.erase(it) : std::next(it);
 }
 
 }  // namespace rm

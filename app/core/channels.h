@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "core/channel_spec.h"
 #include "core/gl.h"
 #include "core/image.h"
 
@@ -23,24 +25,29 @@ constexpr int kMaxImageChannels = 64;
 // *error on failure. No GL needed.
 std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error);
 
-// The textures of channel images, by path: each file is read once and shared
-// by every pass that names it, mipmapped (Shadertoy's default filter needs
-// the levels), right side up as on Shadertoy.
+// The textures of channel files, by path and what they are read as: each
+// is read once and shared by every pass that names it the same way. Flat
+// images are mipmapped (Shadertoy's default filter needs the levels) and
+// right side up unless vflip=false; cube maps come from core/cube_map.h and
+// volumes from core/volume.h.
 class ImageTextures {
  public:
   struct Entry {
+    GLenum target = GL_TEXTURE_2D;
     gl::Texture texture;
-    glm::vec3 resolution{0.0f};
+    glm::vec3 resolution{0.0f};  // a cube map's face size, a volume's depth in z
   };
-  // The texture of `path`, read now if it was not before; nullptr with
-  // *error ("why") if the file cannot be read as an image.
-  const Entry* get(const std::filesystem::path& path, std::string* error);
-  const Entry* find(const std::filesystem::path& path) const;  // nullptr if not read
-  // Frees the textures of every path not in `used`.
-  void keep_only(const std::vector<std::filesystem::path>& used);
+  // The texture of `spec` (an Image spec), read now if it was not before;
+  // nullptr with *error ("why") if the file cannot be read as that.
+  const Entry* get(const ChannelSpec& spec, std::string* error);
+  const Entry* find(const ChannelSpec& spec) const;  // nullptr if not read
+  // Frees the textures of every spec not in `used`.
+  void keep_only(const std::vector<ChannelSpec>& used);
 
  private:
-  std::map<std::filesystem::path, Entry> entries_;
+  using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;
+  static Key key_of(const ChannelSpec& spec);
+  std::map<Key, Entry> entries_;
 };
 
 }  // namespace rm

@@ -43,10 +43,15 @@ struct Descriptor {
 
 }  // namespace
 
-std::string over_the_limit(std::uintmax_t bytes) {
-  return "is " + std::to_string(bytes) + " bytes, over the " + std::to_string(kMaxShaderBytes >> 20) +
-         " MiB limit for shader files";
+namespace {
+
+std::string over(std::uintmax_t bytes, std::uintmax_t limit, const char* what) {
+  return "is " + std::to_string(bytes) + " bytes, over the " + std::to_string(limit >> 20) + " MiB limit for " + what;
 }
+
+}  // namespace
+
+std::string over_the_limit(std::uintmax_t bytes) { return over(bytes, kMaxShaderBytes, "shader files"); }
 
 std::optional<std::string> unreadable_because(const std::filesystem::path& path) {
   struct stat st {};
@@ -57,6 +62,11 @@ std::optional<std::string> unreadable_because(const std::filesystem::path& path)
 }
 
 std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error) {
+  return read_regular_file(path, kMaxShaderBytes, "shader files", error);
+}
+
+std::optional<std::string> read_regular_file(const std::filesystem::path& path, std::uintmax_t limit,
+                                             const char* what, std::string* error) {
   // O_NONBLOCK: opening a FIFO with no writer must not wait for one. What the
   // descriptor is gets decided by fstat, so a file swapped in after a check
   // by name is still caught.
@@ -75,8 +85,8 @@ std::optional<std::string> read_shader_file(const std::filesystem::path& path, s
     return std::nullopt;
   }
   const auto size = static_cast<std::uintmax_t>(st.st_size);
-  if (size > kMaxShaderBytes) {
-    *error = over_the_limit(size);
+  if (size > limit) {
+    *error = over(size, limit, what);
     return std::nullopt;
   }
   // Read to the end, not to the size fstat gave: a file still being written
@@ -93,8 +103,8 @@ std::optional<std::string> read_shader_file(const std::filesystem::path& path, s
     }
     if (n == 0) break;
     bytes.append(buffer, static_cast<size_t>(n));
-    if (bytes.size() > kMaxShaderBytes) {
-      *error = over_the_limit(bytes.size());
+    if (bytes.size() > limit) {
+      *error = over(bytes.size(), limit, what);
       return std::nullopt;
     }
   }

@@ -24,6 +24,11 @@ std::optional<std::string> unreadable_because(const std::filesystem::path& path)
 // the words above.
 std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error);
 
+// The same for any regular file, up to `limit` bytes ("... over the N MiB
+// limit for WHAT").
+std::optional<std::string> read_regular_file(const std::filesystem::path& path, std::uintmax_t limit,
+                                             const char* what, std::string* error);
+
 // "is 17000000 bytes, over the 16 MiB limit for shader files"
 std::string over_the_limit(std::uintmax_t bytes);
 

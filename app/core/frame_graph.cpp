@@ -13,22 +13,23 @@ int mip_levels(glm::ivec2 size) {
   return levels;
 }
 
-// The buffers some pass samples with mipmaps: only those rebuild their levels.
-bool read_with_mipmaps(const Project& project, const fs::path& buffer) {
-  for (const Pass& pass : project.passes())
-    for (const ChannelSpec& c : pass.channels)
-      if (c.kind == ChannelSpec::Kind::Pass && c.path == buffer && c.sampler.filter == Sampler::Filter::Mipmap)
-        return true;
-  return false;
-}
+int shape_index(ChannelSpec::Shape shape) { return static_cast<int>(shape); }
 
 }  // namespace
 
 FrameGraph::FrameGraph(const Renderer& renderer) : renderer_(renderer) {
   const float black[4] = {0, 0, 0, 0};
-  black_ = gl::make_texture(GL_TEXTURE_2D);
-  glTextureStorage2D(black_.get(), 1, GL_RGBA8, 1, 1);
-  glTextureSubImage2D(black_.get(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, black);
+  black_[0] = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(black_[0].get(), 1, GL_RGBA8, 1, 1);
+  glTextureSubImage2D(black_[0].get(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, black);
+  black_[1] = gl::make_texture(GL_TEXTURE_CUBE_MAP);
+  glTextureStorage2D(black_[1].get(), 1, GL_RGBA8, 1, 1);
+  for (int f = 0; f < 6; ++f) glTextureSubImage3D(black_[1].get(), 0, 0, 0, f, 1, 1, 1, GL_RGBA, GL_FLOAT, black);
+  black_[2] = gl::make_texture(GL_TEXTURE_3D);
+  glTextureStorage3D(black_[2].get(), 1, GL_RGBA8, 1, 1, 1);
+  glTextureSubImage3D(black_[2].get(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, black);
+  // Shadertoy filters across cube faces (WebGL 2 always does).
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   keyboard_texture_ = gl::make_texture(GL_TEXTURE_2D);
   glTextureStorage2D(keyboard_texture_.get(), 1, GL_R8, KeyboardState::kKeys, 3);
   const GLenum min_filters[3] = {GL_NEAREST, GL_LINEAR, GL_LINEAR_MIPMAP_LINEAR};
@@ -53,21 +54,23 @@ GLuint FrameGraph::sampler_for(const Sampler& s) const {
 
 bool FrameGraph::update(const Project& project, std::string* error) {
   bool ok = true;
-  std::vector<fs::path> images;
+  std::vector<ChannelSpec> images;
+  mipmapped_.clear();
   for (const Pass& pass : project.passes()) {
     for (size_t c = 0; c < 4; ++c) {
       const ChannelSpec& spec = pass.channels[c];
-      if (spec.kind == ChannelSpec::Kind::Image) {
-        images.push_back(spec.path);
-        std::string why;
-        if (!images_.get(spec.path, &why) && ok) {
-          *error = "iChannel" + std::to_string(c) + " of " + pass.file.filename().string() + " '" +
-                   spec.path.string() + "': " + why;
-          ok = false;
-        }
+      if (spec.kind == ChannelSpec::Kind::Pass && spec.sampler.filter == Sampler::Filter::Mipmap)
+        mipmapped_.push_back(spec.path);
+      if (spec.kind != ChannelSpec::Kind::Image) continue;
+      images.push_back(spec);
+      std::string why;
+      if (!images_.get(spec, &why) && ok) {
+        *error = "iChannel" + std::to_string(c) + " of " + pass.file.filename().string() + " '" + spec.path.string() +
+                 "': " + why;
+        ok = false;
       }
     }
-    if (!pass.is_image) buffers_[pass.file];  // made at the first draw, at the picture's size
+    if (!pass.is_image) buffers_[pass.file];  // made at the first draw
   }
   images_.keep_only(images);
   for (auto it = buffers_.begin(); it != buffers_.end();) {
@@ -78,25 +81,31 @@ bool FrameGraph::update(const Project& project, std::string* error) {
   return ok;
 }
 
-void FrameGraph::resize(Buffer& buffer, glm::ivec2 size) const {
-  if (buffer.size == size) return;
-  auto make = [&](gl::Texture* texture, gl::Framebuffer* fbo) {
-    *texture = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture->get(), mip_levels(size), GL_RGBA32F, size.x, size.y);
-    *fbo = gl::make_framebuffer();
-    glNamedFramebufferTexture(fbo->get(), GL_COLOR_ATTACHMENT0, texture->get(), 0);
+void FrameGraph::resize(Buffer& buffer, glm::ivec2 size, bool cube) const {
+  if (buffer.size == size && buffer.cube == cube) return;
+  const GLenum target = cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+  auto make = [&](gl::Texture* texture, std::array<gl::Framebuffer, 6>* fbos) {
+    *texture = gl::make_texture(target);
+    glTextureStorage2D(texture->get(), mip_levels(size), cube ? GL_RGBA16F : GL_RGBA32F, size.x, size.y);
     const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(fbo->get(), GL_COLOR, 0, zero);  // buffers start at zero
+    for (int f = 0; f < (cube ? 6 : 1); ++f) {
+      gl::Framebuffer& fbo = (*fbos)[static_cast<size_t>(f)];
+      fbo = gl::make_framebuffer();
+      if (cube) glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, texture->get(), 0, f);
+      else glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, texture->get(), 0);
+      glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, zero);  // buffers start at zero
+    }
   };
   gl::Texture front, back;
-  gl::Framebuffer front_fbo, back_fbo;
+  std::array<gl::Framebuffer, 6> front_fbo, back_fbo;
   make(&front, &front_fbo);
   make(&back, &back_fbo);
-  if (buffer.front) {  // keep the content where it fits
+  if (buffer.front && buffer.cube == cube) {  // keep the content where it fits
     const glm::ivec2 kept = glm::min(size, buffer.size);
-    glCopyImageSubData(buffer.front.get(), GL_TEXTURE_2D, 0, 0, 0, 0, front.get(), GL_TEXTURE_2D, 0, 0, 0, 0, kept.x,
-                       kept.y, 1);
+    glCopyImageSubData(buffer.front.get(), target, 0, 0, 0, 0, front.get(), target, 0, 0, 0, 0, kept.x, kept.y,
+                       cube ? 6 : 1);
   }
+  buffer.cube = cube;
   buffer.front = std::move(front);
   buffer.back = std::move(back);
   buffer.front_fbo = std::move(front_fbo);
@@ -109,12 +118,12 @@ ChannelInputs FrameGraph::inputs_of(const Project& project, size_t pass) const {
   for (size_t c = 0; c < 4; ++c) {
     const ChannelSpec& spec = project.passes()[pass].channels[c];
     ChannelInput& in = inputs[c];
-    in.texture = black_.get();
+    in.texture = black_[shape_index(spec.shape)].get();
     in.sampler = sampler_for(spec.sampler);
     switch (spec.kind) {
       case ChannelSpec::Kind::Image:
         // update() read it; an image that failed reads black.
-        if (const auto* it = images_.find(spec.path)) {
+        if (const auto* it = images_.find(spec)) {
           in.texture = it->texture.get();
           in.resolution = it->resolution;
         }
@@ -136,23 +145,31 @@ ChannelInputs FrameGraph::inputs_of(const Project& project, size_t pass) const {
   return inputs;
 }
 
+void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInputs& in, glm::ivec2 picture) {
+  const Pass& pass = project.passes()[index];
+  Buffer& buffer = buffers_[pass.file];
+  const glm::ivec2 size = pass.cube ? glm::ivec2(pass.cube_size) : picture;
+  resize(buffer, size, pass.cube);
+  FrameInputs pass_in = in;
+  pass_in.resolution = glm::vec3(size, 1.0f);
+  pass_in.frag_coord_offset = glm::vec2(0.0f);
+  const ChannelInputs inputs = inputs_of(project, index);
+  for (int face = 0; face < (pass.cube ? 6 : 1); ++face) {
+    pass_in.cube_face = face;
+    glBindFramebuffer(GL_FRAMEBUFFER, buffer.back_fbo[static_cast<size_t>(face)].get());
+    renderer_.draw(*pass.scene->program(), pass_in, inputs, size);
+  }
+  std::swap(buffer.front, buffer.back);
+  std::swap(buffer.front_fbo, buffer.back_fbo);
+  if (std::find(mipmapped_.begin(), mipmapped_.end(), pass.file) != mipmapped_.end())
+    glGenerateTextureMipmap(buffer.front.get());
+}
+
 void FrameGraph::draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size) {
   if (project.reads_keyboard())
     glTextureSubImage2D(keyboard_texture_.get(), 0, 0, 0, KeyboardState::kKeys, 3, GL_RED, GL_UNSIGNED_BYTE,
                         keyboard_.texels().data());
-  FrameInputs buffer_in = in;
-  buffer_in.resolution = glm::vec3(size, 1.0f);
-  buffer_in.frag_coord_offset = glm::vec2(0.0f);
-  for (size_t i = 0; i + 1 < project.passes().size(); ++i) {
-    const Pass& pass = project.passes()[i];
-    Buffer& buffer = buffers_[pass.file];
-    resize(buffer, size);
-    glBindFramebuffer(GL_FRAMEBUFFER, buffer.back_fbo.get());
-    renderer_.draw(*pass.scene->program(), buffer_in, inputs_of(project, i), size);
-    std::swap(buffer.front, buffer.back);
-    std::swap(buffer.front_fbo, buffer.back_fbo);
-    if (read_with_mipmaps(project, pass.file)) glGenerateTextureMipmap(buffer.front.get());
-  }
+  for (size_t i = 0; i + 1 < project.passes().size(); ++i) draw_pass(project, i, in, size);
 }
 
 void FrameGraph::draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target) {
@@ -174,8 +191,10 @@ void FrameGraph::restart() {
   const float zero[4] = {0, 0, 0, 0};
   for (auto& [file, buffer] : buffers_) {
     if (!buffer.front) continue;
-    glClearNamedFramebufferfv(buffer.front_fbo.get(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(buffer.back_fbo.get(), GL_COLOR, 0, zero);
+    for (int f = 0; f < (buffer.cube ? 6 : 1); ++f) {
+      glClearNamedFramebufferfv(buffer.front_fbo[static_cast<size_t>(f)].get(), GL_COLOR, 0, zero);
+      glClearNamedFramebufferfv(buffer.back_fbo[static_cast<size_t>(f)].get(), GL_COLOR, 0, zero);
+    }
   }
   keyboard_.clear();
 }

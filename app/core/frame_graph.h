@@ -1,13 +1,15 @@
 // FrameGraph: draws a Project's frames. It owns what the passes read and
-// write: each buffer pass's pair of RGBA32F targets (ping-pong), the channel
-// images, the keyboard texture and Shadertoy's samplers.
+// write: each buffer pass's pair of targets (ping-pong), the channel images,
+// cube maps and volumes, the keyboard texture and Shadertoy's samplers.
 //
 // One rule gives Shadertoy's order: a pass reads each buffer's latest
 // finished output. A buffer drawn earlier in this frame has already swapped
 // its pair, so its readers see this frame; a pass that reads itself, or a
 // buffer drawn later, sees the previous frame.
 #pragma once
+#include <array>
 #include <map>
+#include <vector>
 #include <string>
 
 #include "core/channels.h"
@@ -30,7 +32,8 @@ class FrameGraph {
 
   // One frame: every buffer pass into its target, then the image pass over
   // `target`'s (0,0,size) viewport. Buffers are the size of the picture; a
-  // new size keeps their content where it fits.
+  // new size keeps their content where it fits. A Cube A pass draws its six
+  // faces at its own size.
   void draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target = 0);
   // Only the buffer passes: the frames before the one `render` writes.
   void draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size);
@@ -46,20 +49,26 @@ class FrameGraph {
   GLuint buffer_texture(const fs::path& pass) const;
 
  private:
+  // A buffer pass's pair of targets: RGBA32F pictures, or for a Cube A pass
+  // RGBA16F cube maps (one framebuffer per face).
   struct Buffer {
+    bool cube = false;
     gl::Texture front, back;  // front: the latest finished output
-    gl::Framebuffer front_fbo, back_fbo;
+    std::array<gl::Framebuffer, 6> front_fbo, back_fbo;
     glm::ivec2 size{0};
   };
-  void resize(Buffer& buffer, glm::ivec2 size) const;
+  void resize(Buffer& buffer, glm::ivec2 size, bool cube) const;
+  void draw_pass(const Project& project, size_t index, const FrameInputs& in, glm::ivec2 size);
   ChannelInputs inputs_of(const Project& project, size_t pass) const;
   GLuint sampler_for(const Sampler& s) const;
 
   const Renderer& renderer_;
   ImageTextures images_;
   std::map<fs::path, Buffer> buffers_;
+  std::vector<fs::path> mipmapped_;  // the buffers some pass samples with mipmaps
   KeyboardState keyboard_;
-  gl::Texture keyboard_texture_, black_;
+  gl::Texture keyboard_texture_;
+  gl::Texture black_[3];  // a transparent black texel per shape: flat, cube, volume
   gl::Sampler samplers_[3][2];  // [filter][wrap]
 };
 

@@ -68,6 +68,9 @@ const std::vector<HostInput>& host_inputs() {
       // Where a tile starts, for pictures drawn in tiles (the wrapper adds it to fragCoord).
       {"rm_FragCoordOffset", "uniform vec2 rm_FragCoordOffset;", Changes::Never,
        [](P p, const char* n, I in) { set_vec<2>(p, n, in.frag_coord_offset); }, "", nullptr},
+      // Which face a Cube A pass draws (0..5: +X, -X, +Y, -Y, +Z, -Z).
+      {"rm_CubeFace", "uniform int rm_CubeFace;", Changes::Never,
+       [](P p, const char* n, I in) { p.set(n, static_cast<float>(in.cube_face)); }, "", nullptr},
       // glslViewer / Book of Shaders names.
       {"u_resolution", "", Changes::Never,
        [](P p, const char* n, I in) { set_vec<2>(p, n, glm::vec2(in.resolution)); }, "", nullptr},

@@ -19,6 +19,7 @@ struct FrameInputs {
   glm::vec4 date{0.0f};                    // year, month from 0, day, seconds since midnight
   float sample_rate = 44100.0f;
   glm::vec2 frag_coord_offset{0.0f};       // tile origin when rendering in tiles
+  int cube_face = 0;                       // the face a Cube A pass draws
 };
 
 // Shadertoy's iMouse: xy follows the pointer while the left button is held and

@@ -1,6 +1,7 @@
 #include "core/project.h"
 
 #include <algorithm>
+#include <tuple>
 
 #include "core/shadertoy_json.h"
 
@@ -40,6 +41,7 @@ ReloadStatus Project::reload() {
   bool failed = false, changed = false;
   // Every pass reachable from the image pass, the image first.
   std::vector<fs::path> reached{image_path_};
+  std::vector<std::pair<fs::path, ChannelSpec>> reads;  // reader, and a buffer it reads
   for (size_t i = 0; i < reached.size(); ++i) {
     Scene& scene = scene_for(reached[i]);
     const ReloadStatus status = scene.prepare();
@@ -52,8 +54,16 @@ ReloadStatus Project::reload() {
       failed = true;
       continue;
     }
+    if (i == 0 && scene.latest_source().cubemap) {
+      Diagnostic d;
+      d.path = image_path_.string();
+      d.message = "the image pass defines mainCubemap: open the pass that reads the cube map";
+      diagnostics_.push_back(d);
+      failed = true;
+    }
     for (const ChannelSpec& channel : scene.latest_source().channels) {
       if (channel.kind != ChannelSpec::Kind::Pass) continue;
+      reads.push_back({reached[i], channel});
       if (channel.path == image_path_) {
         Diagnostic d;
         d.path = reached[i].string();
@@ -73,6 +83,27 @@ ReloadStatus Project::reload() {
     diagnostics_.push_back(d);
     failed = true;
   }
+  // A Cube A pass is one that defines mainCubemap; every reader must read it as a cube.
+  std::map<fs::path, int> cube_size;  // cube passes
+  if (!failed) {
+    for (const auto& [reader, channel] : reads) {
+      const bool cube_pass = scene_for(channel.path).latest_source().cubemap;
+      const bool read_as_cube = channel.shape == ChannelSpec::Shape::Cube;
+      if (cube_pass != read_as_cube) {
+        Diagnostic d;
+        d.path = reader.string();
+        d.message = "'" + channel.path.filename().string() +
+                    (cube_pass ? "' defines mainCubemap: read it with `cube` after its name"
+                               : "' is read with `cube` but defines no mainCubemap(out vec4, in vec2, in vec3, in vec3)");
+        diagnostics_.push_back(d);
+        failed = true;
+      }
+      if (cube_pass) {
+        int& size = cube_size[channel.path];
+        size = std::max(size, channel.cube_size > 0 ? channel.cube_size : 0);
+      }
+    }
+  }
   auto same_passes = [&] {
     if (reached.size() != passes_.size()) return false;
     for (const Pass& pass : passes_)
@@ -88,10 +119,11 @@ ReloadStatus Project::reload() {
   for (const fs::path& file : reached) scene_for(file).commit();
   for (auto it = scenes_.begin(); it != scenes_.end();)
     it = std::find(reached.begin(), reached.end(), it->first) == reached.end() ? scenes_.erase(it) : std::next(it);
-  // Buffers in the order of their file names, then the image.
+  // Buffers in the order of their file names, then cube passes, then the
+  // image: Shadertoy's A, B, C, D, Cube A, Image.
   std::vector<fs::path> buffers(reached.begin() + 1, reached.end());
-  std::sort(buffers.begin(), buffers.end(), [](const fs::path& a, const fs::path& b) {
-    return std::make_pair(a.filename(), a) < std::make_pair(b.filename(), b);
+  std::sort(buffers.begin(), buffers.end(), [&](const fs::path& a, const fs::path& b) {
+    return std::make_tuple(cube_size.count(a), a.filename(), a) < std::make_tuple(cube_size.count(b), b.filename(), b);
   });
   buffers.push_back(image_path_);
   passes_.clear();
@@ -100,6 +132,10 @@ ReloadStatus Project::reload() {
     pass.file = file;
     pass.scene = scenes_.at(file).get();
     pass.is_image = file == image_path_;
+    if (auto cube = cube_size.find(file); cube != cube_size.end()) {
+      pass.cube = true;
+      pass.cube_size = cube->second > 0 ? cube->second : ChannelSpec::kDefaultCubeSize;
+    }
     pass.channels = pass.scene->source().channels;
     for (size_t c = 0; c < 4; ++c) {
       ChannelSpec& spec = pass.channels[c];
@@ -107,8 +143,13 @@ ReloadStatus Project::reload() {
         spec.kind = ChannelSpec::Kind::Pass;
         spec.path = file;
       }
-      if (pass.is_image && !channel_overrides_[c].empty())
-        spec = ChannelSpec{ChannelSpec::Kind::Image, channel_overrides_[c], default_sampler(ChannelSpec::Kind::Image)};
+      // A --channelN file takes the place of what the image pass names, read
+      // as the same shape (a cube map stays a cube map: the shader samples one).
+      if (pass.is_image && !channel_overrides_[c].empty()) {
+        const ChannelSpec::Shape shape = spec.kind == ChannelSpec::Kind::Keyboard ? ChannelSpec::Shape::Flat : spec.shape;
+        spec = ChannelSpec{ChannelSpec::Kind::Image, shape, channel_overrides_[c],
+                           default_sampler(ChannelSpec::Kind::Image, shape)};
+      }
     }
     passes_.push_back(std::move(pass));
   }

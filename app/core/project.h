@@ -24,6 +24,8 @@ struct Pass {
   Scene* scene = nullptr;              // owned by the project
   std::array<ChannelSpec, 4> channels;  // with `self` resolved to a Pass of this file
   bool is_image = false;
+  bool cube = false;   // a Cube A pass: drawn into the six faces of a cube map
+  int cube_size = 0;   // its face size
 };
 
 // Where a project's passes come from: a shader file is the image pass and

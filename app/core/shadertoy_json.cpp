@@ -1,5 +1,7 @@
 #include "core/shadertoy_json.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "core/channel_spec.h"
@@ -17,6 +19,15 @@ float rm_hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.545
 void mainImage(out vec4 c, in vec2 f) {
   vec2 cell = floor(f / 4.0);
   c = vec4(rm_hash(cell), rm_hash(cell + 17.0), rm_hash(cell + 31.0), 1.0);
+}
+)";
+
+// What a missing cube map shows instead: a sky, drawn by a Cube A pass.
+const char* const kStandInSky = R"(// Stand-in for a cube map that only shadertoy.com serves: a sky over grey ground.
+void mainCubemap(out vec4 c, in vec2 f, in vec3 ro, in vec3 rd) {
+  vec3 sky = mix(vec3(0.75, 0.85, 1.0), vec3(0.25, 0.45, 0.85), clamp(rd.y, 0.0, 1.0));
+  vec3 sun = vec3(1.0, 0.9, 0.7) * pow(max(dot(rd, normalize(vec3(0.6, 0.5, -0.6))), 0.0), 64.0);
+  c = vec4(rd.y > 0.0 ? sky + sun : vec3(0.35), 1.0);
 }
 )";
 
@@ -39,10 +50,12 @@ int buffer_index_of_name(const std::string& name) {
   return -1;
 }
 
+constexpr const char* kCubeFile = "cube_a.frag";
+
 std::string buffer_file(int index) { return std::string("buffer_") + static_cast<char>('a' + index) + ".frag"; }
 
-Sampler sampler_of(const json& input, ChannelSpec::Kind kind) {
-  Sampler s = default_sampler(kind);
+Sampler sampler_of(const json& input, ChannelSpec::Kind kind, ChannelSpec::Shape shape) {
+  Sampler s = default_sampler(kind, shape);
   if (!input.contains("sampler") || !input["sampler"].is_object()) return s;
   const json& j = input["sampler"];
   const std::string filter = j.contains("filter") ? text_of(j["filter"]) : "";
@@ -100,6 +113,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
 
   // First: which output id is which buffer, and which pass is which file.
   std::map<std::string, int> buffer_of_output;
+  std::vector<std::string> cube_outputs;  // the ids of Cube A's output
   struct PassText {
     std::string file;
     const json* pass;
@@ -113,6 +127,11 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     if (type == "common") {
       project.files["common.glsl"] = pass.contains("code") ? text_of(pass["code"]) : "";
       has_common = true;
+    } else if (type == "cubemap") {
+      if (pass.contains("outputs") && pass["outputs"].is_array())
+        for (const json& out : pass["outputs"])
+          if (out.is_object() && out.contains("id")) cube_outputs.push_back(text_of(out["id"]));
+      passes.push_back({kCubeFile, &pass});
     } else if (type == "image") {
       passes.push_back({ShadertoyProject::kImage, &pass});
     } else if (type == "buffer") {
@@ -154,8 +173,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
       const std::string where = p.file + " iChannel" + std::to_string(channel);
       ChannelSpec spec;
       std::string file;
-      Sampler sampler = sampler_of(input, ctype == "texture" ? ChannelSpec::Kind::Image
-                                          : ctype == "keyboard" ? ChannelSpec::Kind::Keyboard : ChannelSpec::Kind::Pass);
+      bool stand_in = false;  // a pass standing in for media keeps the media's sampler
       if (ctype == "buffer") {
         int index = -1;
         if (auto it = buffer_of_output.find(text_of(input.value("id", json()))); it != buffer_of_output.end()) index = it->second;
@@ -167,28 +185,52 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         }
         spec.kind = ChannelSpec::Kind::Pass;
         file = buffer_file(index);
+      } else if (ctype == "cubemap" &&
+                 (std::find(cube_outputs.begin(), cube_outputs.end(), text_of(input.value("id", json()))) !=
+                      cube_outputs.end() ||
+                  src.find("previz/cubemap") != std::string::npos)) {
+        if (cube_outputs.empty()) {
+          project.warnings.push_back(where + ": reads Cube A, which the JSON does not hold; it reads black");
+          continue;
+        }
+        spec.kind = ChannelSpec::Kind::Pass;
+        spec.shape = ChannelSpec::Shape::Cube;
+        file = kCubeFile;
       } else if (ctype == "keyboard") {
         spec.kind = ChannelSpec::Kind::Keyboard;
-      } else if (ctype == "texture") {
+      } else if (ctype == "texture" || ctype == "cubemap" || ctype == "volume") {
         spec.kind = ChannelSpec::Kind::Image;
+        spec.shape = ctype == "cubemap" ? ChannelSpec::Shape::Cube
+                     : ctype == "volume" ? ChannelSpec::Shape::Volume : ChannelSpec::Shape::Flat;
         const std::string base = std::filesystem::path(src).filename().string();
         const std::filesystem::path local = media_dir.empty() || base.empty() ? std::filesystem::path() : media_dir / base;
         std::error_code ec;
         if (!local.empty() && std::filesystem::is_regular_file(local, ec)) {
           file = std::filesystem::absolute(local).lexically_normal().string();
         } else {
-          project.warnings.push_back(where + ": '" + src + "' is not in --media" +
-                                     (media_dir.empty() ? "" : " '" + media_dir.string() + "'") +
-                                     "; value noise stands in for it");
-          spec.kind = ChannelSpec::Kind::Pass;
-          file = "standin_noise.frag";
-          project.files[file] = kStandInNoise;
+          const std::string missing = where + ": '" + src + "' is not in --media" +
+                                      (media_dir.empty() ? "" : " '" + media_dir.string() + "'");
+          if (ctype == "volume") {
+            project.warnings.push_back(missing + "; it reads black");
+          } else if (ctype == "cubemap") {
+            project.warnings.push_back(missing + "; a sky stands in for it");
+            spec.kind = ChannelSpec::Kind::Pass;
+            stand_in = true;
+            file = "standin_sky.frag";
+            project.files[file] = kStandInSky;
+          } else {
+            project.warnings.push_back(missing + "; value noise stands in for it");
+            spec.kind = ChannelSpec::Kind::Pass;
+            stand_in = true;
+            file = "standin_noise.frag";
+            project.files[file] = kStandInNoise;
+          }
         }
       } else {
         project.warnings.push_back(where + ": input type '" + ctype + "' is not supported; it reads black");
         continue;
       }
-      spec.sampler = sampler;
+      spec.sampler = sampler_of(input, stand_in ? ChannelSpec::Kind::Image : spec.kind, spec.shape);
       text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";
     }
     project.files[p.file] = text;

@@ -1,6 +1,6 @@
 // Shadertoy's JSON export ({"Shader": {"info", "renderpass": [...]}}, the
 // shape shadertoy.com's API returns) read into the files of a raymarching
-// project: image.frag, buffer_a.frag ... buffer_d.frag and common.glsl, each
+// project: image.frag, buffer_a.frag ... buffer_d.frag, cube_a.frag and common.glsl, each
 // pass naming its inputs with #pragma channelN (core/channel_spec.h). The
 // same files run straight from the JSON (an in-memory tree under
 // PROJECT.json/) and are what `import` writes for editing with hot reload.

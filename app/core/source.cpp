@@ -20,13 +20,33 @@ constexpr int kCommandLineFile = -2;
 
 // The Shadertoy prelude: the host inputs (core/host_inputs.h), then each
 // channel as what it is bound to.
-std::string shadertoy_prelude() {
+std::string shadertoy_prelude(const std::array<ChannelSpec, 4>& channels) {
   std::string out = host_input_declarations();
   out += "uniform vec3 iChannelResolution[4];\n";
-  for (int i = 0; i < 4; ++i) out += "uniform sampler2D iChannel" + std::to_string(i) + ";\n";
+  for (int i = 0; i < 4; ++i)
+    out += std::string("uniform ") + glsl_sampler_type(channels[static_cast<size_t>(i)].shape) + " iChannel" +
+           std::to_string(i) + ";\n";
   out += "out vec4 rm_FragColor;";
   return out;
 }
+
+// A Cube A pass draws each face of a cube map in turn. A face's pixel looks
+// along the direction that samples it back (GL's cube map layout: the face
+// row 0 is its top), from the origin, as on Shadertoy.
+const char* const kCubemapMain = R"glsl(void main() {
+  vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
+  vec2 fragCoord = gl_FragCoord.xy;
+  vec2 st = fragCoord / iResolution.xy * 2.0 - 1.0;
+  vec3 dir;
+  if (rm_CubeFace == 0) dir = vec3(1.0, -st.y, -st.x);
+  else if (rm_CubeFace == 1) dir = vec3(-1.0, -st.y, st.x);
+  else if (rm_CubeFace == 2) dir = vec3(st.x, 1.0, st.y);
+  else if (rm_CubeFace == 3) dir = vec3(st.x, -1.0, -st.y);
+  else if (rm_CubeFace == 4) dir = vec3(st.x, -st.y, 1.0);
+  else dir = vec3(-st.x, -st.y, -1.0);
+  mainCubemap(color, fragCoord, vec3(0.0), normalize(dir));
+  rm_FragColor = color;
+})glsl";
 
 // Shadertoy leaves fragColor's start value undefined; we start from opaque black.
 // With RM_VIEW (render --view, the window's V key) the pixel becomes a debug
@@ -334,6 +354,7 @@ class Preprocessor {
     std::string code = lexing::strip_comments(body_);
     bool has_main = lexing::has_call(code, "main", "void");
     bool has_main_image = lexing::has_call(code, "mainImage");
+    const bool has_main_cubemap = lexing::has_call(code, "mainCubemap");
     const bool modern = version_ && version_->modern();
     // Real Shadertoy shaders carry a main() for other hosts in an inactive
     // #ifdef: with both, the kind is decided on what the compiler would see.
@@ -347,14 +368,20 @@ class Preprocessor {
       }
     }
 
-    if (has_main_image && !has_main) {
+    if (has_main_cubemap && !has_main_image && !has_main) {
+      out_.kind = ShaderKind::Shadertoy;
+      out_.cubemap = true;
+      // A cube pass that reads itself reads a cube map.
+      for (ChannelSpec& c : out_.channels)
+        if (c.kind == ChannelSpec::Kind::Self) c.shape = ChannelSpec::Shape::Cube;
+    } else if (has_main_image && !has_main) {
       out_.kind = ShaderKind::Shadertoy;
     } else if (has_main && modern) {
       out_.kind = ShaderKind::Complete;
     } else if (has_main) {
       out_.kind = ShaderKind::Legacy;
     } else {
-      error(0, 0, 0, "defines neither mainImage(out vec4, in vec2) nor main()");
+      error(0, 0, 0, "defines neither mainImage(out vec4, in vec2) nor main() (nor mainCubemap, for a cube pass)");
       return;
     }
 
@@ -372,14 +399,14 @@ class Preprocessor {
     if (keep_version && version_->es()) emit_host("precision highp float;\nprecision highp int;");
 
     if (out_.kind == ShaderKind::Shadertoy) {
-      emit_host(shadertoy_prelude());
+      emit_host(shadertoy_prelude(out_.channels));
     } else if (out_.kind == ShaderKind::Legacy) {
       emit_host(kLegacyPrelude);
       if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
     }
     out_.text += body_;
     out_.line_map.insert(out_.line_map.end(), body_map_.begin(), body_map_.end());
-    if (out_.kind == ShaderKind::Shadertoy) emit_host(kShadertoyMain);
+    if (out_.kind == ShaderKind::Shadertoy) emit_host(out_.cubemap ? kCubemapMain : kShadertoyMain);
   }
 
   const SourceOptions& options_;

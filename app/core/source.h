@@ -62,6 +62,9 @@ struct Source {
   std::vector<fs::path> watch;     // files whose change should reload, incl. missing includes
   std::vector<Origin> line_map;    // one entry per line of text (0-based index)
   ShaderKind kind = ShaderKind::Shadertoy;
+  // A Shadertoy Cube A pass: it defines mainCubemap instead of mainImage and
+  // is drawn once per cube face (rm_CubeFace says which).
+  bool cubemap = false;
   std::string version_line;        // the #version line the final text starts with
   // What iChannel0..3 read, named in the shader by #pragma channelN
   // (core/channel_spec.h; a file is relative to the file that names it);

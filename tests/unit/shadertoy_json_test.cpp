@@ -71,6 +71,34 @@ TEST(ShadertoyJson, MediaComeFromTheMediaDirectoryOrAStandIn) {
   EXPECT_NE(p->warnings[0].find("'/media/a/missing.jpg' is not in --media"), std::string::npos) << p->warnings[0];
 }
 
+// Cube A is read through its output id (or Shadertoy's previz name) as a
+// cube pass; cube map and volume media come from --media, and a missing
+// cube map is a sky drawn by a stand-in cube pass.
+TEST(ShadertoyJson, CubeAAndCubeMapAndVolumeInputs) {
+  test::TempDir media;
+  test::write_file(media / "lights.png", "not read here");
+  test::write_file(media / "noise.bin", "not read here");
+  const std::string json = R"({"renderpass": [
+      {"type": "cubemap", "name": "Cube A", "code": "C", "outputs": [{"id": 41, "channel": 0}]},
+      {"type": "image", "code": "x", "inputs": [
+        {"id": 41, "ctype": "cubemap", "src": "/media/previz/cubemap00.png", "channel": 0},
+        {"ctype": "cubemap", "src": "/media/a/lights.png", "channel": 1},
+        {"ctype": "cubemap", "src": "/media/a/gone.png", "channel": 2},
+        {"ctype": "volume", "src": "/media/a/noise.bin", "channel": 3}]}]})";
+  std::string error;
+  auto p = read(json, &error, media.path());
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["cube_a.frag"], "C\n");
+  EXPECT_EQ(p->files["image.frag"], "x\n#pragma channel0 \"cube_a.frag\" cube\n"
+                                    "#pragma channel1 \"" + (media / "lights.png").string() + "\" cube\n"
+                                    "#pragma channel2 \"standin_sky.frag\" cube filter=mipmap wrap=repeat\n"
+                                    "#pragma channel3 \"" + (media / "noise.bin").string() + "\" volume\n");
+  EXPECT_EQ(p->files.count("standin_sky.frag"), 1u);
+  ASSERT_EQ(p->warnings.size(), 1u);
+  EXPECT_NE(p->warnings[0].find("'/media/a/gone.png' is not in --media"), std::string::npos) << p->warnings[0];
+  EXPECT_NE(p->warnings[0].find("a sky stands in for it"), std::string::npos) << p->warnings[0];
+}
+
 TEST(ShadertoyJson, UnknownPassAndInputTypesAreOneWarningEachAndTheRestRuns) {
   const std::string json = R"({"renderpass": [
       {"type": "sound", "name": "Sound", "code": "s"},
