@@ -29,10 +29,11 @@ int ImportCommand::run() const {
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir, ec)) throw UsageError{"'" + dir_ + "': cannot create the directory"};
   // Nothing is written unless everything can be: no half-imported project.
-  for (const auto& [name, text] : project->files)
+  const auto files = project->files_to_import();
+  for (const auto& [name, text] : files)
     if (!force_ && std::filesystem::exists(dir / name, ec))
       throw UsageError{"'" + (dir / name).string() + "' exists (--force replaces it)"};
-  for (const auto& [name, text] : project->files) {
+  for (const auto& [name, text] : files) {
     std::ofstream out(dir / name, std::ios::binary);
     out << text;
     if (!out.flush()) throw UsageError{"'" + (dir / name).string() + "': cannot write"};

@@ -8,9 +8,21 @@
 namespace rm {
 
 ProjectFiles project_files(const fs::path& path, const fs::path& media_dir) {
-  if (!is_shadertoy_json(path)) return {path, disk_file_system()};
-  return {fs::absolute(path).lexically_normal() / ShadertoyProject::kImage, shadertoy_file_system(path, media_dir)};
+  if (!is_shadertoy_json(path)) return {path, disk_file_system(), {}};
+  // Common comes in ahead of each pass's first line, so that the lines of
+  // the JSON's code keep the numbers shadertoy.com's editor shows.
+  return {fs::absolute(path).lexically_normal() / ShadertoyProject::kImage, shadertoy_file_system(path, media_dir),
+          {ShadertoyProject::kCommon}};
 }
+
+namespace {
+
+SourceOptions with_forced(SourceOptions options, const std::vector<std::string>& forced) {
+  options.forced_includes.insert(options.forced_includes.begin(), forced.begin(), forced.end());
+  return options;
+}
+
+}  // namespace
 
 Project::Project(fs::path image, SourceOptions options, FileSystem files, std::array<fs::path, 4> channels)
     : image_path_(fs::absolute(image).lexically_normal()),
@@ -19,9 +31,14 @@ Project::Project(fs::path image, SourceOptions options, FileSystem files, std::a
       files_(std::move(files)),
       channel_overrides_(std::move(channels)) {}
 
+Project::Project(const ProjectFiles& from, SourceOptions options, std::array<fs::path, 4> channels)
+    : Project(from.image, with_forced(std::move(options), from.forced_includes), from.files, std::move(channels)) {
+  forced_includes_ = from.forced_includes;
+}
+
 void Project::set_options(SourceOptions all, SourceOptions image_only) {
-  options_ = std::move(all);
-  image_options_ = std::move(image_only);
+  options_ = with_forced(std::move(all), forced_includes_);
+  image_options_ = with_forced(std::move(image_only), forced_includes_);
   for (auto& [file, scene] : scenes_) scene->set_options(file == image_path_ ? image_options_ : options_);
 }
 

@@ -34,6 +34,7 @@ struct Pass {
 struct ProjectFiles {
   fs::path image;
   FileSystem files;
+  std::vector<std::string> forced_includes;  // for every pass (a JSON's common.glsl)
 };
 ProjectFiles project_files(const fs::path& path, const fs::path& media_dir = {});
 
@@ -45,8 +46,7 @@ class Project {
   // the image pass names for those channels.
   Project(fs::path image, SourceOptions options, FileSystem files = disk_file_system(),
           std::array<fs::path, 4> channels = {});
-  Project(const ProjectFiles& from, SourceOptions options, std::array<fs::path, 4> channels = {})
-      : Project(from.image, std::move(options), from.files, std::move(channels)) {}
+  Project(const ProjectFiles& from, SourceOptions options, std::array<fs::path, 4> channels = {});
 
   // Re-reads every pass. Swapped only when every pass of the new graph built:
   // a broken pass keeps the whole last good graph running. A pass whose text
@@ -83,6 +83,7 @@ class Project {
   bool collect(const fs::path& file, std::vector<fs::path>* order, Diagnostics* diags);
 
   fs::path image_path_;
+  std::vector<std::string> forced_includes_;  // added to every pass's options
   SourceOptions options_, image_options_;
   FileSystem files_;
   std::array<fs::path, 4> channel_overrides_;

@@ -119,14 +119,14 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     const json* pass;
   };
   std::vector<PassText> passes;
-  bool has_common = false;
+  project.files[ShadertoyProject::kCommon] = "";
   for (const json& pass : doc["renderpass"]) {
     if (!pass.is_object()) continue;
     const std::string type = pass.contains("type") ? text_of(pass["type"]) : "";
     const std::string name = pass.contains("name") ? text_of(pass["name"]) : "";
     if (type == "common") {
-      project.files["common.glsl"] = pass.contains("code") ? text_of(pass["code"]) : "";
-      has_common = true;
+      project.files[ShadertoyProject::kCommon] = pass.contains("code") ? text_of(pass["code"]) : "";
+      project.has_common = true;
     } else if (type == "cubemap") {
       if (pass.contains("outputs") && pass["outputs"].is_array())
         for (const json& out : pass["outputs"])
@@ -160,8 +160,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
   }
 
   for (const PassText& p : passes) {
-    std::string text = has_common ? "#include \"common.glsl\"\n" : "";
-    text += p.pass->contains("code") ? text_of((*p.pass)["code"]) : "";
+    std::string text = p.pass->contains("code") ? text_of((*p.pass)["code"]) : "";
     if (!text.empty() && text.back() != '\n') text += '\n';
     const json& inputs = p.pass->contains("inputs") ? (*p.pass)["inputs"] : json::array();
     for (const json& input : inputs) {
@@ -236,6 +235,18 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     project.files[p.file] = text;
   }
   return project;
+}
+
+std::map<std::string, std::string> ShadertoyProject::files_to_import() const {
+  std::map<std::string, std::string> out;
+  for (const auto& [name, text] : files) {
+    if (name == kCommon) {
+      if (has_common) out[name] = text;
+    } else {
+      out[name] = (has_common && is_shader_file(name) ? "#include \"common.glsl\"\n" : "") + text;
+    }
+  }
+  return out;
 }
 
 std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path& json_path,

@@ -17,9 +17,19 @@ namespace rm {
 
 struct ShadertoyProject {
   std::string name;                           // info.name, or ""
-  std::map<std::string, std::string> files;   // file name -> text
+  // File name -> text, as a run from the JSON reads them: common.glsl is
+  // always there (empty without a Common pass) and comes into every pass
+  // as a forced include, so each pass is its JSON code, line for line,
+  // followed by its #pragma channelN lines.
+  std::map<std::string, std::string> files;
+  bool has_common = false;
   std::vector<std::string> warnings;          // one line each: what runs with a stand-in or not at all
   static constexpr const char* kImage = "image.frag";
+  static constexpr const char* kCommon = "common.glsl";
+
+  // The files `import` writes: each pass includes common.glsl on its first
+  // line, and there is no common.glsl without a Common pass.
+  std::map<std::string, std::string> files_to_import() const;
 };
 
 // Reads the JSON text. Media that only shadertoy.com serves (/media/a/NAME)

@@ -252,6 +252,9 @@ class Preprocessor {
 
     int file = add_file(path);
     stack_.push_back(file);
+    if (from_file < 0)
+      for (const std::string& name : options_.forced_includes)
+        if (!include(path, file, 0, IncludeDirective{false, name, 0})) break;
     for_each_line(text, [&](std::string_view line, int line_no) { return take_line(path, file, line, line_no); });
     stack_.pop_back();
   }
@@ -295,16 +298,21 @@ class Preprocessor {
       error(file, line_no, inc->column, "#include expects \"FILE\" or <FILE>");
       return false;
     }
+    return include(path, file, line_no, *inc);
+  }
+
+  // Expands `inc`, met at `line_no` of `file` (at `path`). false after an error.
+  bool include(const fs::path& path, int file, int line_no, const IncludeDirective& inc) {
     if (stack_.size() >= kMaxIncludeDepth) {
-      error(file, line_no, inc->column,
+      error(file, line_no, inc.column,
             "#include nested too deeply (more than " + std::to_string(kMaxIncludeDepth) + " levels)");
       return false;
     }
     fs::path first_candidate;
-    auto target = resolve(*inc, path.parent_path(), &first_candidate);
+    auto target = resolve(inc, path.parent_path(), &first_candidate);
     if (!target) {
       if (!first_candidate.empty()) out_.watch.push_back(first_candidate);
-      error(file, line_no, inc->column, "cannot find include '" + inc->target + "'");
+      error(file, line_no, inc.column, "cannot find include '" + inc.target + "'");
       return false;
     }
     auto existing = file_index_.find(target->string());
@@ -314,13 +322,13 @@ class Preprocessor {
         std::string chain;
         for (size_t k = s; k < stack_.size(); ++k)
           chain += out_.files[static_cast<size_t>(stack_[k])].filename().string() + " -> ";
-        error(file, line_no, inc->column, "#include cycle: " + chain + target->filename().string());
+        error(file, line_no, inc.column, "#include cycle: " + chain + target->filename().string());
         return false;
       }
       return true;  // already included once in this compile: nothing to add
     }
     out_.watch.push_back(*target);
-    include_file(*target, file, line_no, inc->column);
+    include_file(*target, file, line_no, inc.column);
     return true;
   }
 

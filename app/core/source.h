@@ -45,6 +45,9 @@ struct SourceOptions {
   std::vector<fs::path> include_dirs;  // -I, searched after the including file's dir
   fs::path shaderlib_dir;              // root that holds rm/, for <rm/...>
   std::vector<Define> defines;         // -D, placed right after #version
+  // Included before the scene's first line, as a compiler's -include: the
+  // scene's own lines keep their numbers (a Shadertoy JSON's Common).
+  std::vector<std::string> forced_includes;
 };
 
 // File access, injectable so tests and fuzzers can use an in-memory tree.

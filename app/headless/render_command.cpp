@@ -72,27 +72,24 @@ int render_command(const RenderRequest& req) {
   }
 
   const ProjectFiles from = project_files(req.scene, req.media);
-  const SourceOptions options = with_view(req.source, req.view);
+  SourceOptions plain = req.source;
+  plain.forced_includes = from.forced_includes;
   // Before validation, where a view the scene cannot show would stop at the
   // wrapper's #error instead of this one line.
   if (req.view != View::Picture)
-    if (const Source plain = preprocess(from.image, req.source, from.files); plain.ok())
-      if (auto problem = view_problem(plain, req.view))
+    if (const Source source = preprocess(from.image, plain, from.files); source.ok())
+      if (auto problem = view_problem(source, req.view))
         return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
-  Diagnostics diags;
-  check_scene(from.image, options, &diags, from.files);
-  print_diagnostics(diags);
-  if (count_errors(diags)) return kExitShaderError;
 
   std::string error;
   auto context = EglContext::create(&error);
   if (!context) return fail(error, kExitUsage);
+  // The project validates every pass with glslang before the driver sees it.
   Project project(from, req.source, req.channels);
-  project.set_options(req.source, options);
-  if (project.reload() != ReloadStatus::Swapped) {
-    print_diagnostics(project.diagnostics());
-    return kExitShaderError;
-  }
+  project.set_options(req.source, with_view(req.source, req.view));
+  const bool built = project.reload() == ReloadStatus::Swapped;
+  print_diagnostics(project.diagnostics());
+  if (!built) return kExitShaderError;
   Renderer renderer;
   if (std::max(req.size.x, req.size.y) > renderer.max_tile() && project.image_source().kind != ShaderKind::Shadertoy)
     return fail("--size " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) + " is larger than " +

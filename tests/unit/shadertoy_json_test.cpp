@@ -33,16 +33,21 @@ TEST(ShadertoyJson, ReadsEveryPassAndInputInBothSpellings) {
   EXPECT_EQ(p->name, "Two buffers");
   EXPECT_TRUE(p->warnings.empty());
   ASSERT_EQ(p->files.size(), 4u);
+  EXPECT_TRUE(p->has_common);
   EXPECT_EQ(p->files["common.glsl"], "const float K = 1.0;");
-  EXPECT_EQ(p->files["buffer_a.frag"], "#include \"common.glsl\"\nA\n");
-  EXPECT_EQ(p->files["buffer_b.frag"], "#include \"common.glsl\"\nB\n");
-  // The code first, so its lines keep their numbers after the include;
-  // the inputs as pragmas, only the settings that differ from the default.
+  EXPECT_EQ(p->files["buffer_a.frag"], "A\n");
+  EXPECT_EQ(p->files["buffer_b.frag"], "B\n");
+  // The code first, line for line (Common is a forced include); the inputs
+  // as pragmas, only the settings that differ from the default.
   EXPECT_EQ(p->files["image.frag"],
-            "#include \"common.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1); }\n"
+            "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }\n"
             "#pragma channel3 \"buffer_b.frag\" filter=mipmap wrap=repeat vflip=false\n"
             "#pragma channel1 \"buffer_a.frag\"\n"
             "#pragma channel0 keyboard\n");
+  // What import writes includes Common on each pass's first line.
+  const auto files = p->files_to_import();
+  EXPECT_EQ(files.at("buffer_a.frag"), "#include \"common.glsl\"\nA\n");
+  EXPECT_EQ(files.at("common.glsl"), "const float K = 1.0;");
 }
 
 TEST(ShadertoyJson, AcceptsTheBareShaderAndAListOfShaders) {
