@@ -92,5 +92,39 @@ TEST_P(Example, IsAnimatedAndItsLightFollowsTheMouse) {
 INSTANTIATE_TEST_SUITE_P(Examples, Example, ::testing::ValuesIn(examples()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
+// The example projects: each directory of examples/ holds one, opened at its
+// image.frag. They render finite, varied pictures after a few frames with
+// the button held (paint paints).
+std::vector<std::string> projects() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(default_scene().parent_path()))
+    if (fs::exists(entry.path() / "image.frag")) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+class ExampleProject : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ExampleProject, RendersAFiniteVariedPicture) {
+  TempDir dir;
+  const fs::path out = dir / "out.exr";
+  const Outcome r = run_binary("render '" + (default_scene().parent_path() / GetParam() / "image.frag").string() +
+                               "' -o '" + out.string() + "' --size " + kSize + " --frame 3 --mouse 40,60,40,60");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<float> px = read_pixels(out);
+  ASSERT_EQ(px.size(), 160u * 90u * 4u);
+  size_t non_finite = 0;
+  float lo = 1e9f, hi = -1e9f;
+  for (size_t i = 0; i < px.size(); ++i) {
+    non_finite += !std::isfinite(px[i]);
+    if (i % 4 == 1) lo = std::min(lo, px[i]), hi = std::max(hi, px[i]);
+  }
+  EXPECT_EQ(non_finite, 0u);
+  EXPECT_GT(hi - lo, 0.2f) << "the picture is (nearly) constant";
+}
+
+INSTANTIATE_TEST_SUITE_P(Projects, ExampleProject, ::testing::ValuesIn(projects()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
 }  // namespace
 }  // namespace rm::test
