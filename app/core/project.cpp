@@ -59,9 +59,11 @@ ReloadStatus Project::reload() {
   // Every pass reachable from the image pass, the image first.
   std::vector<fs::path> reached{image_path_};
   std::vector<std::pair<fs::path, ChannelSpec>> reads;  // reader, and a buffer it reads
+  std::vector<fs::path> swapped;                         // passes with a new program
   for (size_t i = 0; i < reached.size(); ++i) {
     Scene& scene = scene_for(reached[i]);
     const ReloadStatus status = scene.prepare();
+    if (status == ReloadStatus::Swapped) swapped.push_back(reached[i]);
     const Diagnostics& diags = scene.latest_diagnostics();
     diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());
     changed = changed || status == ReloadStatus::Swapped;
@@ -170,6 +172,7 @@ ReloadStatus Project::reload() {
     }
     passes_.push_back(std::move(pass));
   }
+  rebuilt_ = std::move(swapped);
   ++generation_;
   return ReloadStatus::Swapped;
 }

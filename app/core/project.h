@@ -68,6 +68,8 @@ class Project {
   const Diagnostics& diagnostics() const { return diagnostics_; }
   std::vector<fs::path> watch_list() const;
   int generation() const { return generation_; }  // counts swaps
+  // The passes the latest swap compiled anew (the others kept their programs).
+  const std::vector<fs::path>& rebuilt() const { return rebuilt_; }
 
   // What changes the picture from frame to frame, over all passes: a pass
   // that reads a previous frame (itself or a later buffer) is animated.
@@ -89,6 +91,7 @@ class Project {
   std::array<fs::path, 4> channel_overrides_;
   std::map<fs::path, std::unique_ptr<Scene>> scenes_;
   std::vector<Pass> passes_;
+  std::vector<fs::path> rebuilt_;
   Diagnostics diagnostics_;
   int generation_ = 0;
 };

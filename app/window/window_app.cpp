@@ -145,7 +145,13 @@ class WindowApp {
       std::cerr << "raymarching: error: " << channel_error << '\n';
     if (options_.verbose) {
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
-                << project_.generation() << '\n';
+                << project_.generation();
+      if (status == ReloadStatus::Swapped) {
+        std::cerr << " (rebuilt:";
+        for (const fs::path& pass : project_.rebuilt()) std::cerr << ' ' << pass.filename().string();
+        std::cerr << ')';
+      }
+      std::cerr << '\n';
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
     }
     update_title(true);

@@ -6,7 +6,9 @@ Checks: the window opens; a mouse drag changes iMouse; F12 writes a PNG whose
 pixels match `render` of the same scene, time and mouse; an edit saved by
 rename shows up; a broken edit, and one that includes a FIFO, keeps the last
 good frame and reports file:line; the fix reloads; Q quits with status 0. A second window shows the
-image a scene names with #pragma channel0 when no --channel0 is given.
+image a scene names with #pragma channel0 when no --channel0 is given. A
+project of three passes: a drag paints into a feedback buffer and F12 shows
+it, a key reaches the shader, and a save to one buffer rebuilds only it.
 Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
 animated one, and so does an animated one while paused.
@@ -178,6 +180,85 @@ def scene_default_channel():
           colour is not None and all(abs(a - b) < 0.01 for a, b in zip(colour, [0.2, 0.6, 0.4])), colour)
 
 
+def pixel(image, x, y, work):
+    """The mean RGB of the 3x3 pixels around (x, y) of `image` (y down)."""
+    cut = os.path.join(work, "cut.png")
+    subprocess.run(["oiiotool", image, "--cut", f"3x3+{x - 1}+{y - 1}", "-o", cut], check=True)
+    return mean_colour(cut)[0]
+
+
+PAINT_A = """#pragma channel0 self filter=nearest
+#pragma channel1 keyboard
+void mainImage(out vec4 c, in vec2 f) {
+  c = texelFetch(iChannel0, ivec2(f), 0);
+  if (iMouse.z > 0.0 && distance(f, iMouse.xy) < 8.0) c.r = 1.0;
+  c.g = texelFetch(iChannel1, ivec2(75, 2), 0).x;  // K toggles
+}
+"""
+CONSTANT_B = "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 0.0, 0.25, 1.0); }\n"
+SHOW_AB = """#pragma channel0 "buffer_a.frag" filter=nearest
+#pragma channel1 "buffer_b.frag" filter=nearest
+void mainImage(out vec4 c, in vec2 f) {
+  c = vec4(texelFetch(iChannel0, ivec2(f), 0).rg, texelFetch(iChannel1, ivec2(f), 0).b, 1.0);
+}
+"""
+
+
+def project_session():
+    """A project of three passes in the window: a drag paints a stroke into a
+    buffer that feeds itself, a key reaches the shader through the keyboard
+    texture, and a save to one buffer rebuilds only it and keeps the paint."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-project-")
+    for name, text in (("buffer_a.frag", PAINT_A), ("buffer_b.frag", CONSTANT_B), ("image.frag", SHOW_AB)):
+        with open(os.path.join(work, name), "w") as f:
+            f.write(text)
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = subprocess.Popen([BINARY, os.path.join(work, "image.frag"), "--size", "200x120", "--shot-dir", work, "-v"],
+                            stdout=open(out_path, "w"), stderr=open(err_path, "w"), cwd=work)
+    window = wait_for(lambda: xdotool("search", "--name", "image.frag"))
+    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
+        proc.kill()
+        check("a project opens in the window", False, open(err_path).read())
+        return
+    window = window.splitlines()[0]
+
+    # A stroke along y = 40 (window coordinates, y down) from x = 40 to 160.
+    xdotool("mousemove", "--window", window, 40, 40, "mousedown", 1)
+    for x in range(40, 161, 8):
+        xdotool("mousemove", "--window", window, x, 40)
+        time.sleep(0.03)
+    xdotool("mouseup", 1)
+    time.sleep(0.2)
+    shot = take_screenshot(window, out_path)
+    on, off = (pixel(shot, 100, 40, work), pixel(shot, 100, 100, work)) if shot else (None, None)
+    check("a drag paints a stroke into a feedback buffer, and F12 shows it",
+          on is not None and on[0] > 0.9 and off[0] < 0.1 and abs(on[2] - 0.25) < 0.01, f"on {on}, off {off}")
+
+    xdotool("key", "--window", window, "k")
+    time.sleep(0.3)
+    shot = take_screenshot(window, out_path)
+    keyed = pixel(shot, 100, 100, work) if shot else None
+    check("a key reaches the shader through the keyboard texture", keyed is not None and keyed[1] > 0.9, keyed)
+
+    save_by_rename(os.path.join(work, "buffer_b.frag"), CONSTANT_B.replace("0.25", "0.75"))
+    check("a save to one buffer pass rebuilds only it",
+          wait_for(lambda: "reload ok generation 2 (rebuilt: buffer_b.frag)" in open(err_path).read()),
+          open(err_path).read())
+    wait_for(lambda: "presented generation 2" in open(err_path).read())
+    shot = take_screenshot(window, out_path)
+    after = pixel(shot, 100, 40, work) if shot else None
+    check("... which shows, and the paint in the other buffer stays",
+          after is not None and abs(after[2] - 0.75) < 0.01 and after[0] > 0.9, after)
+
+    xdotool("key", "--window", window, "Escape")  # Q belongs to the shader in a keyboard project
+    try:
+        status = proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    check("Esc quits a keyboard project with status 0", status == 0, status)
+
+
 # Costly enough per frame that drawing without pause shows in CPU time.
 STATIC = ("void mainImage(out vec4 c, in vec2 f) {\n  float v = 0.0;\n"
           "  for (int i = 0; i < 200; i++) v += sin(f.x * 0.01 + float(i));\n"
@@ -247,6 +328,7 @@ if __name__ == "__main__":
     try:
         main()
         scene_default_channel()
+        project_session()
         idle_costs_nothing()
     finally:
         status = summary()
