@@ -1,6 +1,7 @@
 #include "core/frame_graph.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace rm {
@@ -145,6 +146,43 @@ ChannelInputs FrameGraph::inputs_of(const Project& project, size_t pass) const {
   return inputs;
 }
 
+void FrameGraph::time_passes(bool on, bool finish) {
+  timing_ = on;
+  finish_ = finish;
+  times_.clear();
+}
+
+template <typename Draw>
+void FrameGraph::timed(const Project& project, size_t index, Draw draw) {
+  if (!timing_) {
+    draw();
+    return;
+  }
+  if (index == 0) times_.clear();
+  while (queries_.size() <= index) queries_.push_back(gl::make_query(GL_TIME_ELAPSED));
+  if (finish_) glFinish();  // nothing earlier may still run inside this pass
+  const auto start = std::chrono::steady_clock::now();
+  glBeginQuery(GL_TIME_ELAPSED, queries_[index].get());
+  draw();
+  if (finish_) glFinish();
+  glEndQuery(GL_TIME_ELAPSED);
+  PassTime t;
+  t.pass = project.passes()[index].file;
+  if (finish_) t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  times_.resize(index);
+  times_.push_back(t);
+}
+
+std::vector<FrameGraph::PassTime> FrameGraph::pass_times() const {
+  std::vector<PassTime> out = times_;
+  for (size_t i = 0; i < out.size(); ++i) {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(queries_[i].get(), GL_QUERY_RESULT, &ns);
+    out[i].gpu_ms = static_cast<double>(ns) / 1e6;
+  }
+  return out;
+}
+
 void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInputs& in, glm::ivec2 picture) {
   const Pass& pass = project.passes()[index];
   Buffer& buffer = buffers_[pass.file];
@@ -154,11 +192,13 @@ void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInpu
   pass_in.resolution = glm::vec3(size, 1.0f);
   pass_in.frag_coord_offset = glm::vec2(0.0f);
   const ChannelInputs inputs = inputs_of(project, index);
-  for (int face = 0; face < (pass.cube ? 6 : 1); ++face) {
-    pass_in.cube_face = face;
-    glBindFramebuffer(GL_FRAMEBUFFER, buffer.back_fbo[static_cast<size_t>(face)].get());
-    renderer_.draw(*pass.scene->program(), pass_in, inputs, size);
-  }
+  timed(project, index, [&] {
+    for (int face = 0; face < (pass.cube ? 6 : 1); ++face) {
+      pass_in.cube_face = face;
+      glBindFramebuffer(GL_FRAMEBUFFER, buffer.back_fbo[static_cast<size_t>(face)].get());
+      renderer_.draw(*pass.scene->program(), pass_in, inputs, size);
+    }
+  });
   std::swap(buffer.front, buffer.back);
   std::swap(buffer.front_fbo, buffer.back_fbo);
   if (std::find(mipmapped_.begin(), mipmapped_.end(), pass.file) != mipmapped_.end())
@@ -174,8 +214,9 @@ void FrameGraph::draw_buffers(const Project& project, const FrameInputs& in, glm
 
 void FrameGraph::draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target) {
   draw_buffers(project, in, size);
+  const size_t image = project.passes().size() - 1;
   glBindFramebuffer(GL_FRAMEBUFFER, target);
-  renderer_.draw(*project.image_program(), in, inputs_of(project, project.passes().size() - 1), size);
+  timed(project, image, [&] { renderer_.draw(*project.image_program(), in, inputs_of(project, image), size); });
 }
 
 Image FrameGraph::render_image(const Project& project, const FrameInputs& in, glm::ivec2 size) const {
@@ -184,7 +225,9 @@ Image FrameGraph::render_image(const Project& project, const FrameInputs& in, gl
 
 Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size) {
   draw_buffers(project, in, size);
-  return render_image(project, in, size);
+  Image image;
+  timed(project, project.passes().size() - 1, [&] { image = render_image(project, in, size); });  // with the read-back
+  return image;
 }
 
 void FrameGraph::restart() {

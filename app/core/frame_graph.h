@@ -43,6 +43,20 @@ class FrameGraph {
   // draw() into an image: buffers, then the image pass.
   Image render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size);
 
+  // Per-pass timing, for the HUD and the benchmarks: GPU time from a
+  // GL_TIME_ELAPSED query around each pass and, with `finish`, the wall
+  // clock around each pass followed by glFinish (llvmpipe rasterises on
+  // threads its queries do not see; the wall clock is the one to trust there).
+  struct PassTime {
+    fs::path pass;
+    double gpu_ms = 0;
+    double wall_ms = 0;  // 0 without `finish`
+  };
+  void time_passes(bool on, bool finish = false);
+  // The passes of the latest frame drawn with timing on, in draw order
+  // (waits for the queries' results).
+  std::vector<PassTime> pass_times() const;
+
   void restart();  // every buffer back to zero
   KeyboardState& keyboard() { return keyboard_; }
   // The latest output of a buffer pass (tests read it); 0 if none.
@@ -59,6 +73,9 @@ class FrameGraph {
   };
   void resize(Buffer& buffer, glm::ivec2 size, bool cube) const;
   void draw_pass(const Project& project, size_t index, const FrameInputs& in, glm::ivec2 size);
+  // Runs `draw` (pass `index` of `project`), timed when timing is on.
+  template <typename Draw>
+  void timed(const Project& project, size_t index, Draw draw);
   ChannelInputs inputs_of(const Project& project, size_t pass) const;
   GLuint sampler_for(const Sampler& s) const;
 
@@ -70,6 +87,9 @@ class FrameGraph {
   gl::Texture keyboard_texture_;
   gl::Texture black_[3];  // a transparent black texel per shape: flat, cube, volume
   gl::Sampler samplers_[3][2];  // [filter][wrap]
+  bool timing_ = false, finish_ = false;
+  std::vector<gl::Query> queries_;   // one per pass
+  std::vector<PassTime> times_;      // the wall clock and pass of each query
 };
 
 }  // namespace rm

@@ -66,6 +66,11 @@ inline Sampler make_sampler() {
   glCreateSamplers(1, &n);
   return Sampler(n);
 }
+inline Query make_query(GLenum target) {
+  GLuint n = 0;
+  glCreateQueries(target, 1, &n);
+  return Query(n);
+}
 inline VertexArray make_vertex_array() {
   GLuint n = 0;
   glCreateVertexArrays(1, &n);

@@ -170,6 +170,25 @@ TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
   EXPECT_EQ(at(frame(4), 0, 0), glm::vec4(6, 10, 0, 1)) << "both new: A adds 2, B is 10";
 }
 
+TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }\n");
+  write_file(dir_ / "image.frag", kShowChannel0);
+  load("image.frag");
+  frame(0);
+  EXPECT_TRUE(graph_.pass_times().empty()) << "off by default";
+  graph_.time_passes(true, /*finish*/ true);
+  frame(1);
+  frame(2);
+  const auto times = graph_.pass_times();
+  ASSERT_EQ(times.size(), 2u) << "one per pass, not per frame";
+  EXPECT_EQ(times[0].pass.filename(), "buffer_a.frag");
+  EXPECT_EQ(times[1].pass.filename(), "image.frag");
+  for (const auto& t : times) {
+    EXPECT_GT(t.wall_ms, 0.0);
+    EXPECT_GE(t.gpu_ms, 0.0);
+  }
+}
+
 TEST_F(Passes, RenderDrawsEveryFrameBeforeTheOneAskedFor) {
   write_file(dir_ / "buffer_a.frag", "#pragma channel0 self filter=nearest\n"
                                      "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + 1.0; }\n");
