@@ -3,12 +3,12 @@
 #include <iostream>
 
 #include "core/check.h"
-#include "core/scene.h"
+#include "core/project.h"
 
 namespace rm::cli {
 
 CheckCommand::CheckCommand(CLI::App& app)
-    : command_(app.add_subcommand("check", "Preprocess and validate SCENE with glslang; print diagnostics")) {
+    : command_(app.add_subcommand("check", "Preprocess and validate SCENE (with every pass it reads) with glslang; print diagnostics")) {
   command_->add_option("scene", scene_, "Shader to check")->required()->type_name("SCENE");
   command_->add_flag("-E,--expand", expand_, "Print what the compiler sees: the source after the preprocessor");
   source_.add_to(*command_);
@@ -16,8 +16,10 @@ CheckCommand::CheckCommand(CLI::App& app)
 
 int CheckCommand::run() const {
   require_readable_file(scene_);
+  check_project_file(scene_, {});  // malformed JSON: exit 2 with its line and column
   Diagnostics diags;
-  const Source source = check_scene(scene_, source_.source(), &diags);
+  // Every pass of a project (or a Shadertoy .json); -E prints the image pass.
+  const Source source = check_project(project_files(scene_), source_.source(), &diags);
   std::cerr << join(diags);
   if (count_errors(diags)) return kExitShaderError;
   if (expand_) {

@@ -53,76 +53,98 @@ const Source& Project::image_source() const {
   return ready() ? image().scene->source() : none;
 }
 
-ReloadStatus Project::reload() {
-  diagnostics_.clear();
-  bool failed = false, changed = false;
-  // Every pass reachable from the image pass, the image first.
-  std::vector<fs::path> reached{image_path_};
+PassWalk walk_passes(const fs::path& image, const std::function<const Source*(const fs::path&)>& visit,
+                     Diagnostics* diags) {
+  PassWalk walk;
+  walk.reached = {image};
+  auto graph_error = [&](const fs::path& file, std::string message) {
+    Diagnostic d;
+    d.path = file.string();
+    d.message = std::move(message);
+    diags->push_back(std::move(d));
+    walk.ok = false;
+  };
+  std::map<fs::path, const Source*> sources;
   std::vector<std::pair<fs::path, ChannelSpec>> reads;  // reader, and a buffer it reads
-  std::vector<fs::path> swapped;                         // passes with a new program
-  for (size_t i = 0; i < reached.size(); ++i) {
-    Scene& scene = scene_for(reached[i]);
-    const ReloadStatus status = scene.prepare();
-    if (status == ReloadStatus::Swapped) swapped.push_back(reached[i]);
-    const Diagnostics& diags = scene.latest_diagnostics();
-    diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());
-    changed = changed || status == ReloadStatus::Swapped;
-    // Unchanged since a failed attempt is still failed.
-    if (status == ReloadStatus::Failed || (status == ReloadStatus::Unchanged && count_errors(diags) > 0) ||
-        (!scene.program() && status != ReloadStatus::Swapped)) {
-      failed = true;
+  for (size_t i = 0; i < walk.reached.size(); ++i) {
+    const fs::path file = walk.reached[i];
+    const Source* source = visit(file);
+    if (!source) {
+      walk.ok = false;
       continue;
     }
-    if (i == 0 && scene.latest_source().cubemap) {
-      Diagnostic d;
-      d.path = image_path_.string();
-      d.message = "the image pass defines mainCubemap: open the pass that reads the cube map";
-      diagnostics_.push_back(d);
-      failed = true;
-    }
-    for (const ChannelSpec& channel : scene.latest_source().channels) {
+    sources[file] = source;
+    if (i == 0 && source->cubemap)
+      graph_error(image, "the image pass defines mainCubemap: open the pass that reads the cube map");
+    for (const ChannelSpec& channel : source->channels) {
       if (channel.kind != ChannelSpec::Kind::Pass) continue;
-      reads.push_back({reached[i], channel});
-      if (channel.path == image_path_) {
-        Diagnostic d;
-        d.path = reached[i].string();
-        d.message = "'" + image_path_.filename().string() + "' is the image pass: no pass can read it";
-        diagnostics_.push_back(d);
-        failed = true;
-      } else if (std::find(reached.begin(), reached.end(), channel.path) == reached.end()) {
-        reached.push_back(channel.path);
-      }
+      reads.push_back({file, channel});
+      if (channel.path == image)
+        graph_error(file, "'" + image.filename().string() + "' is the image pass: no pass can read it");
+      else if (std::find(walk.reached.begin(), walk.reached.end(), channel.path) == walk.reached.end())
+        walk.reached.push_back(channel.path);
     }
   }
-  if (reached.size() > kMaxBuffers + 1) {
-    Diagnostic d;
-    d.path = image_path_.string();
-    d.message = "a project may have at most " + std::to_string(kMaxBuffers) + " buffer passes; this one reaches " +
-                std::to_string(reached.size() - 1);
-    diagnostics_.push_back(d);
-    failed = true;
-  }
+  if (walk.reached.size() > Project::kMaxBuffers + 1)
+    graph_error(image, "a project may have at most " + std::to_string(Project::kMaxBuffers) +
+                           " buffer passes; this one reaches " + std::to_string(walk.reached.size() - 1));
+  if (!walk.ok) return walk;
   // A Cube A pass is one that defines mainCubemap; every reader must read it as a cube.
-  std::map<fs::path, int> cube_size;  // cube passes
-  if (!failed) {
-    for (const auto& [reader, channel] : reads) {
-      const bool cube_pass = scene_for(channel.path).latest_source().cubemap;
-      const bool read_as_cube = channel.shape == ChannelSpec::Shape::Cube;
-      if (cube_pass != read_as_cube) {
-        Diagnostic d;
-        d.path = reader.string();
-        d.message = "'" + channel.path.filename().string() +
-                    (cube_pass ? "' defines mainCubemap: read it with `cube` after its name"
-                               : "' is read with `cube` but defines no mainCubemap(out vec4, in vec2, in vec3, in vec3)");
-        diagnostics_.push_back(d);
-        failed = true;
-      }
-      if (cube_pass) {
-        int& size = cube_size[channel.path];
-        size = std::max(size, channel.cube_size > 0 ? channel.cube_size : 0);
-      }
+  for (const auto& [reader, channel] : reads) {
+    const bool cube_pass = sources.at(channel.path)->cubemap;
+    if (cube_pass != (channel.shape == ChannelSpec::Shape::Cube))
+      graph_error(reader, "'" + channel.path.filename().string() +
+                              (cube_pass ? "' defines mainCubemap: read it with `cube` after its name"
+                                         : "' is read with `cube` but defines no mainCubemap(out vec4, in vec2, in vec3, in vec3)"));
+    if (cube_pass) {
+      int& size = walk.cube_size[channel.path];
+      size = std::max(size, channel.cube_size);
     }
   }
+  return walk;
+}
+
+Source check_project(const ProjectFiles& from, const SourceOptions& options, Diagnostics* diags) {
+  const SourceOptions with_common = with_forced(options, from.forced_includes);
+  std::map<fs::path, Source> sources;
+  walk_passes(
+      from.image,
+      [&](const fs::path& file) -> const Source* {
+        Diagnostics found;
+        Source source = check_scene(file, with_common, &found, from.files);
+        diags->insert(diags->end(), found.begin(), found.end());
+        if (count_errors(found) > 0) return nullptr;
+        return &(sources[file] = std::move(source));
+      },
+      diags);
+  auto image = sources.find(fs::absolute(from.image).lexically_normal());
+  return image == sources.end() ? Source{} : image->second;
+}
+
+ReloadStatus Project::reload() {
+  diagnostics_.clear();
+  bool changed = false;
+  std::vector<fs::path> swapped;  // passes with a new program
+  // Every pass reachable from the image pass, the image first.
+  const PassWalk walk = walk_passes(
+      image_path_,
+      [&](const fs::path& file) -> const Source* {
+        Scene& scene = scene_for(file);
+        const ReloadStatus status = scene.prepare();
+        if (status == ReloadStatus::Swapped) swapped.push_back(file);
+        const Diagnostics& diags = scene.latest_diagnostics();
+        diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());
+        changed = changed || status == ReloadStatus::Swapped;
+        // Unchanged since a failed attempt is still failed.
+        if (status == ReloadStatus::Failed || (status == ReloadStatus::Unchanged && count_errors(diags) > 0) ||
+            (!scene.program() && status != ReloadStatus::Swapped))
+          return nullptr;
+        return &scene.latest_source();
+      },
+      &diagnostics_);
+  const std::vector<fs::path>& reached = walk.reached;
+  const std::map<fs::path, int>& cube_size = walk.cube_size;
+  const bool failed = !walk.ok;
   auto same_passes = [&] {
     if (reached.size() != passes_.size()) return false;
     for (const Pass& pass : passes_)

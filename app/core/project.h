@@ -10,6 +10,7 @@
 // No GL objects but programs live here: core/frame_graph.h draws a project.
 #pragma once
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -37,6 +38,23 @@ struct ProjectFiles {
   std::vector<std::string> forced_includes;  // for every pass (a JSON's common.glsl)
 };
 ProjectFiles project_files(const fs::path& path, const fs::path& media_dir = {});
+
+// The pass-graph rules that need no GL, shared by Project::reload and
+// check_project: walks every pass reachable from `image`, the image first,
+// calling visit(file) for each; visit returns the pass's source, or nullptr
+// if the pass failed. The graph's own errors (a pass reading the image, a
+// cube pass read flat, too many passes) go to *diags.
+struct PassWalk {
+  std::vector<fs::path> reached;       // image first
+  std::map<fs::path, int> cube_size;   // the Cube A passes: the largest size=N a reader gives; 0: none
+  bool ok = true;                      // every pass built, and the graph holds together
+};
+PassWalk walk_passes(const fs::path& image, const std::function<const Source*(const fs::path&)>& visit,
+                     Diagnostics* diags);
+
+// `check`: preprocesses and validates every pass with glslang, with no GL.
+// Returns the image pass's source (empty if it failed).
+Source check_project(const ProjectFiles& from, const SourceOptions& options, Diagnostics* diags);
 
 class Project {
  public:

@@ -44,6 +44,20 @@ TEST_F(Cli, SyntaxErrorIsExitOneWithFileLineColumn) {
   EXPECT_NE(r.err.find(": error: "), std::string::npos);
 }
 
+// check validates every pass a project reads, without a GL context.
+TEST_F(Cli, CheckValidatesEveryPassOfAProject) {
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(missing);\n}\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n");
+  test::Outcome r = run("check " + (dir_ / "image.frag").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind((dir_ / "buffer_a.frag").string() + ":2:", 0), 0u) << r.err;
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }\n");
+  r = run("check " + (dir_ / "image.frag").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
 TEST_F(Cli, DefinesAndIncludeDirsWorkAsInACompiler) {
   write_file(dir_ / "d.frag", "#include \"extra.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(LEVEL + EXTRA); }\n");
   write_file(dir_ / "inc/extra.glsl", "const float EXTRA = 1.0;\n");
