@@ -74,6 +74,16 @@ bool FrameGraph::update(const Project& project, std::string* error) {
     if (!pass.is_image) buffers_[pass.file];  // made at the first draw
   }
   images_.keep_only(images);
+  static_.clear();
+  for (const Pass& pass : project.passes()) {
+    const InputUse use = inputs_read(*pass.scene->program());
+    bool fixed = !pass.is_image && !use.time && !use.drag && !use.pointer;
+    for (const ChannelSpec& c : pass.channels)
+      fixed = fixed && (c.kind == ChannelSpec::Kind::None || c.kind == ChannelSpec::Kind::Image ||
+                        (c.kind == ChannelSpec::Kind::Pass &&
+                         std::find(static_.begin(), static_.end(), c.path) != static_.end()));
+    if (fixed) static_.push_back(pass.file);
+  }
   for (auto it = buffers_.begin(); it != buffers_.end();) {
     const bool used = std::any_of(project.passes().begin(), project.passes().end(),
                                   [&](const Pass& p) { return !p.is_image && p.file == it->first; });
@@ -158,7 +168,6 @@ void FrameGraph::timed(const Project& project, size_t index, Draw draw) {
     draw();
     return;
   }
-  if (index == 0) times_.clear();
   while (queries_.size() <= index) queries_.push_back(gl::make_query(GL_TIME_ELAPSED));
   if (finish_) glFinish();  // nothing earlier may still run inside this pass
   const auto start = std::chrono::steady_clock::now();
@@ -168,17 +177,17 @@ void FrameGraph::timed(const Project& project, size_t index, Draw draw) {
   glEndQuery(GL_TIME_ELAPSED);
   PassTime t;
   t.pass = project.passes()[index].file;
+  t.index = index;
   if (finish_) t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  times_.resize(index);
   times_.push_back(t);
 }
 
 std::vector<FrameGraph::PassTime> FrameGraph::pass_times() const {
   std::vector<PassTime> out = times_;
-  for (size_t i = 0; i < out.size(); ++i) {
+  for (PassTime& t : out) {
     GLuint64 ns = 0;
-    glGetQueryObjectui64v(queries_[i].get(), GL_QUERY_RESULT, &ns);
-    out[i].gpu_ms = static_cast<double>(ns) / 1e6;
+    glGetQueryObjectui64v(queries_[t.index].get(), GL_QUERY_RESULT, &ns);
+    t.gpu_ms = static_cast<double>(ns) / 1e6;
   }
   return out;
 }
@@ -187,7 +196,11 @@ void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInpu
   const Pass& pass = project.passes()[index];
   Buffer& buffer = buffers_[pass.file];
   const glm::ivec2 size = pass.cube ? glm::ivec2(pass.cube_size) : picture;
+  if (buffer.size != size || buffer.cube != pass.cube) buffer.drawn_generation = -1;
   resize(buffer, size, pass.cube);
+  const bool fixed = std::find(static_.begin(), static_.end(), pass.file) != static_.end();
+  if (fixed && buffer.drawn_generation == pass.scene->generation()) return;  // its picture is still right
+  buffer.drawn_generation = pass.scene->generation();
   FrameInputs pass_in = in;
   pass_in.resolution = glm::vec3(size, 1.0f);
   pass_in.frag_coord_offset = glm::vec2(0.0f);
@@ -206,6 +219,7 @@ void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInpu
 }
 
 void FrameGraph::draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size) {
+  times_.clear();
   if (project.reads_keyboard())
     glTextureSubImage2D(keyboard_texture_.get(), 0, 0, 0, KeyboardState::kKeys, 3, GL_RED, GL_UNSIGNED_BYTE,
                         keyboard_.texels().data());
@@ -233,6 +247,7 @@ Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, gl
 void FrameGraph::restart() {
   const float zero[4] = {0, 0, 0, 0};
   for (auto& [file, buffer] : buffers_) {
+    buffer.drawn_generation = -1;
     if (!buffer.front) continue;
     for (int f = 0; f < (buffer.cube ? 6 : 1); ++f) {
       glClearNamedFramebufferfv(buffer.front_fbo[static_cast<size_t>(f)].get(), GL_COLOR, 0, zero);

@@ -51,10 +51,11 @@ class FrameGraph {
     fs::path pass;
     double gpu_ms = 0;
     double wall_ms = 0;  // 0 without `finish`
+    size_t index = 0;    // in the project's draw order
   };
   void time_passes(bool on, bool finish = false);
   // The passes of the latest frame drawn with timing on, in draw order
-  // (waits for the queries' results).
+  // (waits for the queries' results). A static pass not drawn again is not there.
   std::vector<PassTime> pass_times() const;
 
   void restart();  // every buffer back to zero
@@ -67,6 +68,7 @@ class FrameGraph {
   // RGBA16F cube maps (one framebuffer per face).
   struct Buffer {
     bool cube = false;
+    int drawn_generation = -1;  // the pass's program generation its content was drawn with; -1: none
     gl::Texture front, back;  // front: the latest finished output
     std::array<gl::Framebuffer, 6> front_fbo, back_fbo;
     glm::ivec2 size{0};
@@ -83,6 +85,11 @@ class FrameGraph {
   ImageTextures images_;
   std::map<fs::path, Buffer> buffers_;
   std::vector<fs::path> mipmapped_;  // the buffers some pass samples with mipmaps
+  // Passes whose picture cannot change from frame to frame: they read no
+  // clock, mouse or keyboard, not themselves, and only images and other
+  // such passes. Each is drawn again only after a reload, a resize or a
+  // restart; a static Cube A sky is drawn once.
+  std::vector<fs::path> static_;
   KeyboardState keyboard_;
   gl::Texture keyboard_texture_;
   gl::Texture black_[3];  // a transparent black texel per shape: flat, cube, volume

@@ -171,7 +171,7 @@ TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
 }
 
 TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
-  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }\n");
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTime); }\n");
   write_file(dir_ / "image.frag", kShowChannel0);
   load("image.frag");
   frame(0);
@@ -187,6 +187,39 @@ TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
     EXPECT_GT(t.wall_ms, 0.0);
     EXPECT_GE(t.gpu_ms, 0.0);
   }
+}
+
+// A buffer that reads no clock, mouse, keyboard or feedback draws the same
+// picture every frame: it is drawn once, and again only after a resize, a
+// restart or a reload. One that reads iTime is drawn every frame.
+TEST_F(Passes, APassWhosePictureCannotChangeIsDrawnOnce) {
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(f.x); }\n");
+  write_file(dir_ / "buffer_b.frag", "#pragma channel0 \"buffer_a.frag\"\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f) + iTime; }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                                  "#pragma channel1 \"buffer_b.frag\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0); }\n");
+  Project& project = load("image.frag");
+  graph_.time_passes(true);
+  auto drawn = [&] {
+    std::vector<std::string> names;
+    for (const auto& t : graph_.pass_times()) names.push_back(t.pass.filename().string());
+    return names;
+  };
+  using Names = std::vector<std::string>;
+  EXPECT_EQ(at(frame(0), 2, 0)[0], 2.5f);
+  EXPECT_EQ(drawn(), (Names{"buffer_a.frag", "buffer_b.frag", "image.frag"}));
+  EXPECT_EQ(at(frame(1), 2, 0)[0], 2.5f) << "still there";
+  EXPECT_EQ(drawn(), (Names{"buffer_b.frag", "image.frag"})) << "A is static; B reads iTime";
+  frame(2, {8, 8});
+  EXPECT_EQ(drawn(), (Names{"buffer_a.frag", "buffer_b.frag", "image.frag"})) << "a resize draws it again";
+  graph_.restart();
+  EXPECT_EQ(at(frame(3, {8, 8}), 2, 0)[0], 2.5f) << "a restart cleared it, and it was drawn again";
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0 * f.x); }\n");
+  ASSERT_EQ(project.reload(), ReloadStatus::Swapped);
+  std::string error;
+  ASSERT_TRUE(graph_.update(project, &error)) << error;
+  EXPECT_EQ(at(frame(4, {8, 8}), 2, 0)[0], 5.0f) << "a reload draws the new program";
 }
 
 TEST_F(Passes, RenderDrawsEveryFrameBeforeTheOneAskedFor) {
