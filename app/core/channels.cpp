@@ -10,34 +10,50 @@
 
 namespace rm {
 
-std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
+namespace {
+
+// Opens `path` and checks its header: no pixel is read yet.
+std::unique_ptr<OIIO::ImageInput> open_checked(const std::filesystem::path& path, std::string* error) {
   // OIIO's own words for these ("could not find a format reader") hide the cause.
   if (auto why = unreadable_because(path)) {
     *error = *why;
-    return std::nullopt;
+    return nullptr;
   }
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string why = OIIO::geterror();
     *error = why.empty() ? "cannot open image" : why;
-    return std::nullopt;
+    return nullptr;
   }
   const OIIO::ImageSpec& spec = in->spec();
   // The header alone says how much memory reading would take: check it first.
   if (spec.width < 1 || spec.height < 1 || spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
     *error = "is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels; a channel image may be 1 to " +
              std::to_string(kMaxImageSide) + " pixels a side";
-    return std::nullopt;
+    return nullptr;
   }
   if (spec.depth > 1) {
     *error = "is a volume image; a channel image is 2D";
-    return std::nullopt;
+    return nullptr;
   }
   if (spec.nchannels < 1 || spec.nchannels > kMaxImageChannels) {
     *error = "has " + std::to_string(spec.nchannels) + " channels; a channel image may have 1 to " +
              std::to_string(kMaxImageChannels) + " (the first 4 are used)";
-    return std::nullopt;
+    return nullptr;
   }
+  return in;
+}
+
+}  // namespace
+
+bool check_channel_image(const std::filesystem::path& path, std::string* error) {
+  return open_checked(path, error) != nullptr;
+}
+
+std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
+  auto in = open_checked(path, error);
+  if (!in) return std::nullopt;
+  const OIIO::ImageSpec& spec = in->spec();
   Image image;
   image.width = spec.width;
   image.height = spec.height;

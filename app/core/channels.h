@@ -24,6 +24,9 @@ constexpr int kMaxImageChannels = 64;
 // Decodes an image file (a regular file) into RGBA; returns nullopt and sets
 // *error on failure. No GL needed.
 std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error);
+// The same checks on the file and its header, reading no pixel: for the
+// command line, before any GL work.
+bool check_channel_image(const std::filesystem::path& path, std::string* error);
 
 // The textures of channel files, by path and what they are read as: each
 // is read once and shared by every pass that names it the same way. Flat

@@ -67,7 +67,7 @@ int render_command(const RenderRequest& req) {
   for (size_t i = 0; i < req.channels.size(); ++i) {
     const auto& path = req.channels[i];
     std::string error;
-    if (!path.empty() && !load_channel_image(path, &error))
+    if (!path.empty() && !check_channel_image(path, &error))
       return fail("--channel" + std::to_string(i) + " '" + path.string() + "': " + error, kExitUsage);
   }
 

@@ -73,7 +73,7 @@ class WindowApp {
     for (size_t i = 0; i < options_.channels.size(); ++i) {
       const auto& path = options_.channels[i];
       std::string error;
-      if (!path.empty() && !load_channel_image(path, &error)) {
+      if (!path.empty() && !check_channel_image(path, &error)) {
         std::cerr << "raymarching: error: --channel" << i << " '" << path.string() << "': " << error << '\n';
         return kExitUsage;
       }
