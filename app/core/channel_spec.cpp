@@ -134,6 +134,18 @@ std::string channel_spec_text(const ChannelSpec& spec, const std::string& file) 
   return out;
 }
 
+std::vector<std::filesystem::path> cube_face_files(const std::filesystem::path& first,
+                                                   const std::function<bool(const std::filesystem::path&)>& exists) {
+  std::vector<std::filesystem::path> files{first};
+  for (int i = 1; i < 6; ++i) {
+    std::filesystem::path face = first;
+    face.replace_filename(first.stem().string() + "_" + std::to_string(i) + first.extension().string());
+    if (!exists(face)) return i == 1 ? std::vector<std::filesystem::path>{} : files;
+    files.push_back(face);
+  }
+  return files;
+}
+
 const char* glsl_sampler_type(ChannelSpec::Shape shape) {
   switch (shape) {
     case ChannelSpec::Shape::Cube: return "samplerCube";

@@ -12,9 +12,11 @@
 // No GL here: the core's graph (core/frame_graph.h) turns specs into textures.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rm {
 
@@ -58,6 +60,12 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
 // The spelling parse_channel_spec reads, for `import` to write. `file` is
 // written as given (relative to the pass that names it).
 std::string channel_spec_text(const ChannelSpec& spec, const std::string& file);
+
+// The face files of a cube map named by its first: NAME.ext holds +X and
+// NAME_1.ext .. NAME_5.ext the rest, as shadertoy.com names its cube map
+// media. Empty if NAME_1.ext does not exist; fewer than six if some are missing.
+std::vector<std::filesystem::path> cube_face_files(const std::filesystem::path& first,
+                                                   const std::function<bool(const std::filesystem::path&)>& exists);
 
 const char* to_string(ChannelSpec::Kind kind);
 const char* glsl_sampler_type(ChannelSpec::Shape shape);  // "sampler2D", "samplerCube", "sampler3D"

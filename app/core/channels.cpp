@@ -139,14 +139,41 @@ ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
   return {spec.path, spec.shape, spec.shape == ChannelSpec::Shape::Flat && spec.sampler.vflip};
 }
 
-const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::string* error) {
+namespace {
+
+// When the file (or each face file of a cube map) was last written.
+std::vector<std::filesystem::file_time_type> stamps_of(const ChannelSpec& spec) {
+  std::vector<std::filesystem::path> files{spec.path};
+  if (spec.shape == ChannelSpec::Shape::Cube) {
+    auto faces = cube_face_files(spec.path, [](const std::filesystem::path& p) {
+      std::error_code ec;
+      return std::filesystem::exists(p, ec);
+    });
+    if (!faces.empty()) files = std::move(faces);
+  }
+  std::vector<std::filesystem::file_time_type> stamps;
+  for (const auto& file : files) {
+    std::error_code ec;
+    stamps.push_back(std::filesystem::last_write_time(file, ec));
+  }
+  return stamps;
+}
+
+}  // namespace
+
+const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::string* error, bool* reread) {
   const Key key = key_of(spec);
-  if (auto it = entries_.find(key); it != entries_.end()) return &it->second;
+  std::vector<std::filesystem::file_time_type> stamps = stamps_of(spec);
+  auto it = entries_.find(key);
+  if (it != entries_.end() && it->second.stamps == stamps) return &it->second;
   std::optional<Entry> entry = spec.shape == ChannelSpec::Shape::Cube     ? cube_texture(spec, error)
                                : spec.shape == ChannelSpec::Shape::Volume ? volume_texture(spec, error)
                                                                           : flat_texture(spec, error);
-  if (!entry) return nullptr;
-  return &entries_.emplace(key, std::move(*entry)).first->second;
+  if (!entry) return it != entries_.end() ? &it->second : nullptr;  // a bad save keeps the last good image
+  if (reread) *reread = true;
+  entry->stamps = std::move(stamps);
+  entries_.insert_or_assign(key, std::move(*entry));
+  return &entries_.at(key);
 }
 
 const ImageTextures::Entry* ImageTextures::find(const ChannelSpec& spec) const {

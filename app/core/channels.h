@@ -39,10 +39,12 @@ class ImageTextures {
     GLenum target = GL_TEXTURE_2D;
     gl::Texture texture;
     glm::vec3 resolution{0.0f};  // a cube map's face size, a volume's depth in z
+    std::vector<std::filesystem::file_time_type> stamps;  // of its file (or six face files) when read
   };
-  // The texture of `spec` (an Image spec), read now if it was not before;
-  // nullptr with *error ("why") if the file cannot be read as that.
-  const Entry* get(const ChannelSpec& spec, std::string* error);
+  // The texture of `spec` (an Image spec), read now if it was not before or
+  // if its file changed since (*reread is then set); nullptr with *error
+  // ("why") if the file cannot be read as that.
+  const Entry* get(const ChannelSpec& spec, std::string* error, bool* reread = nullptr);
   const Entry* find(const ChannelSpec& spec) const;  // nullptr if not read
   // Frees the textures of every spec not in `used`.
   void keep_only(const std::vector<ChannelSpec>& used);

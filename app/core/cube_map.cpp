@@ -45,18 +45,6 @@ glm::vec3 cube_direction(int face, glm::vec2 st) {
   }
 }
 
-std::vector<std::filesystem::path> cube_face_files(const std::filesystem::path& first) {
-  std::vector<std::filesystem::path> files{first};
-  for (int i = 1; i < 6; ++i) {
-    std::filesystem::path face = first;
-    face.replace_filename(first.stem().string() + "_" + std::to_string(i) + first.extension().string());
-    std::error_code ec;
-    if (!std::filesystem::exists(face, ec)) return i == 1 ? std::vector<std::filesystem::path>{} : files;
-    files.push_back(face);
-  }
-  return files;
-}
-
 std::optional<CubeFaces> cube_from_cross(const Image& cross, std::string* error) {
   if (cross.width * 3 != cross.height * 4 || cross.width % 4 != 0) {
     *error = "a cross is 4:3 with square faces; this is " + std::to_string(cross.width) + "x" +
@@ -111,7 +99,10 @@ std::optional<CubeFaces> cube_from_faces(std::array<Image, 6> faces, std::string
 }
 
 std::optional<CubeFaces> load_cube_map(const std::filesystem::path& path, std::string* error) {
-  const std::vector<std::filesystem::path> files = cube_face_files(path);
+  const std::vector<std::filesystem::path> files = cube_face_files(path, [](const std::filesystem::path& p) {
+    std::error_code ec;
+    return std::filesystem::exists(p, ec);
+  });
   if (files.size() == 6) {
     std::array<Image, 6> faces;
     for (size_t f = 0; f < 6; ++f) {

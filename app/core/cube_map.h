@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/channel_spec.h"
 #include "core/image.h"
 
 namespace rm {
@@ -25,11 +26,6 @@ struct CubeFaces {
 // The direction that samples face `face` at `st` (-1..1 across the face,
 // s to the right, t down the rows). Unnormalised.
 glm::vec3 cube_direction(int face, glm::vec2 st);
-
-// The six face files of a cube map named by its first: NAME.ext holds +X
-// and NAME_1.ext .. NAME_5.ext the rest, as shadertoy.com names its cube
-// map media. Empty if NAME_1.ext does not exist.
-std::vector<std::filesystem::path> cube_face_files(const std::filesystem::path& first);
 
 // A horizontal cross, 4:3:          +Y
 //                               -X  +Z  +X  -Z

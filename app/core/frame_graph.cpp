@@ -55,6 +55,7 @@ GLuint FrameGraph::sampler_for(const Sampler& s) const {
 
 bool FrameGraph::update(const Project& project, std::string* error) {
   bool ok = true;
+  images_changed_ = false;
   std::vector<ChannelSpec> images;
   mipmapped_.clear();
   for (const Pass& pass : project.passes()) {
@@ -65,7 +66,13 @@ bool FrameGraph::update(const Project& project, std::string* error) {
       if (spec.kind != ChannelSpec::Kind::Image) continue;
       images.push_back(spec);
       std::string why;
-      if (!images_.get(spec, &why) && ok) {
+      bool reread = false;
+      images_.get(spec, &why, &reread);
+      if (reread) {  // a new picture: what static passes drew from it is stale
+        images_changed_ = true;
+        for (auto& [file, buffer] : buffers_) buffer.drawn_generation = -1;
+      }
+      if (!why.empty() && ok) {
         *error = "iChannel" + std::to_string(c) + " of " + pass.file.filename().string() + " '" + spec.path.string() +
                  "': " + why;
         ok = false;

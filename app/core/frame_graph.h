@@ -23,12 +23,17 @@ class FrameGraph {
  public:
   explicit FrameGraph(const Renderer& renderer);  // needs a current GL context
 
-  // After a reload that swapped: reads the images the passes name (once per
-  // file), makes targets for new buffers and frees those of buffers gone.
-  // A reload keeps every remaining buffer's content. false with *error
-  // ("iChannel1 of image.frag 'rock.png': why") if an image cannot be read;
-  // that channel then reads transparent black.
+  // After a reload: reads the images the passes name (once per file, and
+  // again when it changed on disk), makes targets for new buffers and frees
+  // those of buffers gone. A reload keeps every remaining buffer's content.
+  // false with *error ("iChannel1 of image.frag 'rock.png': why") if an
+  // image cannot be read: the channel keeps the last good picture of that
+  // file, or reads transparent black if there was none.
   bool update(const Project& project, std::string* error);
+  // Whether the latest update() read an image file anew (it changed on
+  // disk): the window calls update() after every watched change, even one
+  // that left every pass's text as it was, and redraws when this is true.
+  bool images_changed() const { return images_changed_; }
 
   // One frame: every buffer pass into its target, then the image pass over
   // `target`'s (0,0,size) viewport. Buffers are the size of the picture; a
@@ -94,6 +99,7 @@ class FrameGraph {
   gl::Texture keyboard_texture_;
   gl::Texture black_[3];  // a transparent black texel per shape: flat, cube, volume
   gl::Sampler samplers_[3][2];  // [filter][wrap]
+  bool images_changed_ = false;
   bool timing_ = false, finish_ = false;
   std::vector<gl::Query> queries_;   // one per pass
   std::vector<PassTime> times_;      // the wall clock and pass of each query

@@ -278,6 +278,9 @@ class Preprocessor {
       }
       if (!spec->path.empty()) {
         out_.watch.push_back(spec->path);
+        if (spec->kind == ChannelSpec::Kind::Image && spec->shape == ChannelSpec::Shape::Cube)
+          for (const fs::path& face : cube_face_files(spec->path, fs_.exists))
+            if (face != spec->path) out_.watch.push_back(face);
         if (!fs_.exists(spec->path)) {
           const char* what = spec->kind == ChannelSpec::Kind::Pass ? "buffer pass" : "channel image";
           error(file, line_no, pragma->column, std::string("cannot find ") + what + " '" +

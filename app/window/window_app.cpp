@@ -134,13 +134,18 @@ class WindowApp {
   void load() {
     const ReloadStatus status = project_.reload();
     watcher_->watch(project_.watch_list());
-    if (status == ReloadStatus::Unchanged) return;
+    std::string channel_error;
+    if (status == ReloadStatus::Unchanged) {  // a channel image may have changed
+      if (project_.ready() && !graph_.update(project_, &channel_error))
+        std::cerr << "raymarching: error: " << channel_error << '\n';
+      if (graph_.images_changed()) dirty_ = true;
+      return;
+    }
     const Diagnostics& diags = project_.diagnostics();
     if (!diags.empty()) std::cerr << join(diags);
     errors_ = count_errors(diags);
     if (project_.ready()) use_ = project_.inputs_read();
     dirty_ = true;  // a new program, or the stale badge and title
-    std::string channel_error;
     if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error))
       std::cerr << "raymarching: error: " << channel_error << '\n';
     if (options_.verbose) {

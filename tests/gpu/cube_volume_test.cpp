@@ -194,6 +194,45 @@ TEST_F(Cubes, AVolumeImageStacksItsSlicesTopToBottom) {
   expect_volume_answers(render("image.frag", 8));
 }
 
+// An image saved again is read again (and a cube map's face files too); a
+// save that breaks it keeps the last good picture, with an error.
+TEST_F(Cubes, AChangedImageIsReadAgainAndABrokenOneKeepsTheLast) {
+  write("tex.png", Image{1, 1, {1, 0, 0, 1}});
+  write_file(dir_ / "image.frag", "#pragma channel0 \"tex.png\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, vec2(0.5)); }\n");
+  EXPECT_EQ(at(render("image.frag", 1), 0), glm::vec4(1, 0, 0, 1));
+  auto later = [&](const char* name) {  // a write the clock can tell apart
+    fs::last_write_time(dir_ / name, fs::last_write_time(dir_ / name) + std::chrono::seconds(2));
+  };
+  std::string error;
+  EXPECT_TRUE(graph_.update(*project_, &error)) << error;
+  EXPECT_FALSE(graph_.images_changed()) << "nothing changed";
+  write("tex.png", Image{1, 1, {0, 0, 1, 1}});
+  later("tex.png");
+  EXPECT_TRUE(graph_.update(*project_, &error)) << error;
+  EXPECT_TRUE(graph_.images_changed());
+  FrameInputs in;
+  in.resolution = glm::vec3(1, 1, 1);
+  EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(0, 0, 1, 1)) << "the new picture";
+  write_file(dir_ / "tex.png", "not a PNG any more");
+  later("tex.png");
+  EXPECT_FALSE(graph_.update(*project_, &error));
+  EXPECT_NE(error.find("tex.png"), std::string::npos) << error;
+  EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(0, 0, 1, 1)) << "the last good picture";
+  EXPECT_EQ(project_->watch_list().size(), 2u) << "the scene and its image";
+}
+
+TEST_F(Cubes, TheFaceFilesOfACubeMapAreWatched) {
+  write("sky.png", face_image(0, 4));
+  for (int f = 1; f < 6; ++f) write("sky_" + std::to_string(f) + ".png", face_image(f, 4));
+  write_file(dir_ / "image.frag", kSampleDirections);
+  render("image.frag", 8);
+  const auto watched = project_->watch_list();
+  for (int f = 1; f < 6; ++f)
+    EXPECT_NE(std::find(watched.begin(), watched.end(), dir_ / ("sky_" + std::to_string(f) + ".png")), watched.end())
+        << "face " << f;
+}
+
 // A 1x2 image, red on top: right side up by default, upside down with vflip=false.
 TEST_F(Cubes, VflipFalseLeavesAnImageAsGlReadsIt) {
   write("two.png", Image{1, 2, {1, 0, 0, 1, 0, 1, 0, 1}});
