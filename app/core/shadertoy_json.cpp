@@ -1,6 +1,7 @@
 #include "core/shadertoy_json.h"
 
 #include <algorithm>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -265,13 +266,41 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
   auto inside = [root](const std::filesystem::path& path) {
     return std::filesystem::absolute(path).lexically_normal().parent_path() == root;
   };
+  // The JSON parsed once per version of its text: a reload reads each pass
+  // and checks each include, and all of them share one parse. Reading the
+  // file again is cheap; comparing its text is exact where a time stamp
+  // may not be.
+  struct Parsed {
+    std::string text;
+    std::optional<ShadertoyProject> project;
+    std::string error;
+  };
+  auto cache = std::make_shared<Parsed>();
+  auto project = [=]() -> const Parsed& {
+    std::string error;
+    std::optional<std::string> text = read_shader_file(root, &error);
+    if (!text) {
+      cache->text.clear();
+      cache->project.reset();
+      cache->error = error;
+    } else if (!cache->project || *text != cache->text) {
+      cache->error.clear();
+      cache->project = read_shadertoy_json(*text, media_dir, &cache->error);
+      if (!cache->project) cache->error = root.string() + ":" + cache->error;
+      cache->text = std::move(*text);
+    }
+    return *cache;
+  };
   FileSystem files;
   files.read = [=](const std::filesystem::path& path, std::string* error) -> std::optional<std::string> {
     if (!inside(path)) return disk.read(path, error);
-    auto project = read_shadertoy_file(root, media_dir, error);
-    if (!project) return std::nullopt;
-    auto it = project->files.find(path.filename().string());
-    if (it == project->files.end()) {
+    const Parsed& parsed = project();
+    if (!parsed.project) {
+      *error = parsed.error;
+      return std::nullopt;
+    }
+    auto it = parsed.project->files.find(path.filename().string());
+    if (it == parsed.project->files.end()) {
       *error = "no such pass in the JSON";
       return std::nullopt;
     }
@@ -279,9 +308,8 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
   };
   files.exists = [=](const std::filesystem::path& path) {
     if (!inside(path)) return disk.exists(path);
-    std::string ignored;
-    auto project = read_shadertoy_file(root, media_dir, &ignored);
-    return project && project->files.count(path.filename().string()) > 0;
+    const Parsed& parsed = project();
+    return parsed.project && parsed.project->files.count(path.filename().string()) > 0;
   };
   return files;
 }

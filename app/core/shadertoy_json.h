@@ -46,7 +46,8 @@ std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path&
 bool is_shadertoy_json(const std::filesystem::path& path);
 
 // Files under `json`/ come from the JSON file, read again on every call so a
-// save of the JSON reloads; everything else comes from the disk.
+// save of the JSON reloads (and parsed again only when its text changed);
+// everything else comes from the disk.
 FileSystem shadertoy_file_system(const std::filesystem::path& json, const std::filesystem::path& media_dir);
 
 }  // namespace rm
