@@ -23,8 +23,6 @@ int main(int argc, char** argv) {
                "Opens SCENE (a .frag file) in a window and reloads it on every save.",
                "raymarching"};
   app.set_version_flag("--version", std::string("raymarching ") + RM_VERSION);
-  app.footer(std::string("\n") + rm::window_keys_help() +
-             "\nexit status: 0 ok, 1 shader error, 2 usage or I/O error");
   app.require_subcommand(0, 1);
 
   const rm::cli::WindowCommand window(app);  // the default: no subcommand
@@ -32,6 +30,11 @@ int main(int argc, char** argv) {
   const rm::cli::CheckCommand check(app);
   const rm::cli::AccuracyCommand accuracy(app);
   const rm::cli::ImportCommand import(app);
+  // Each help shows what its command takes: the window's keys only in the
+  // window's (set after the subcommands, which would inherit them).
+  const std::string exit_status = "\nexit status: 0 ok, 1 shader error, 2 usage or I/O error";
+  app.footer(std::string("\n") + rm::window_keys_help() + exit_status);
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) command->footer(exit_status);
 
   try {
     app.parse(argc, argv);

@@ -76,13 +76,41 @@ int write_durably(const fs::path& path, const std::vector<unsigned char>& bytes)
 
 }  // namespace
 
+std::string writable_image_extensions() {
+  // OIIO's "format:ext,ext;format:ext" list, kept to the writers that can
+  // encode into memory (what write_image needs), each format's first ext.
+  static const std::string list = [] {
+    std::string out;
+    std::string formats = OIIO::get_string_attribute("extension_list");
+    for (size_t at = 0; at < formats.size();) {
+      size_t end = formats.find(';', at);
+      if (end == std::string::npos) end = formats.size();
+      const std::string entry = formats.substr(at, end - at);
+      at = end + 1;
+      const size_t colon = entry.find(':');
+      if (colon == std::string::npos) continue;
+      std::string ext = entry.substr(colon + 1);
+      ext = ext.substr(0, ext.find(','));
+      if (entry.substr(0, colon) == "null") continue;  // OIIO's writer that writes nothing
+      auto writer = OIIO::ImageOutput::create(entry.substr(0, colon));
+      if (!writer || !writer->supports("ioproxy") || ext.empty()) continue;
+      out += (out.empty() ? "." : ", .") + ext;
+    }
+    OIIO::geterror();  // the formats without a writer leave a message behind
+    return out;
+  }();
+  return list;
+}
+
 std::optional<std::string> check_output_path(const fs::path& path) {
-  if (path.extension().empty()) return "'" + path.string() + "' has no extension to choose an image format (use .png or .exr)";
+  if (path.extension().empty())
+    return "'" + path.string() + "' has no extension to choose an image format (" + writable_image_extensions() + ")";
   auto out = OIIO::ImageOutput::create(path.string());
   // write_image() encodes in memory, which some of OIIO's writers cannot.
   if (!out || !out->supports("ioproxy")) {
     OIIO::geterror();  // clear OIIO's pending message
-    return "'" + path.string() + "': unknown image format '" + path.extension().string() + "' (use .png or .exr)";
+    return "'" + path.string() + "': cannot write images of type '" + path.extension().string() + "' (" +
+           writable_image_extensions() + ")";
   }
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;

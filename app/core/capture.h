@@ -24,6 +24,9 @@ enum class Overwrite { Replace, Never };
 // write and a directory that exists. Cheap: call it before rendering.
 std::optional<std::string> check_output_path(const fs::path& path);
 
+// The extensions write_image can write, as ".png, .exr, ..." (from OIIO).
+std::string writable_image_extensions();
+
 // Writes `image` to `path`. With Overwrite::Never an existing file is kept
 // and "-1", "-2", ... is added before the extension. Returns the path
 // written, or nullopt with *error set; on failure no file is left behind.

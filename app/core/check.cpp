@@ -236,6 +236,46 @@ Diagnostics validate(const Source& source) {
   return out;
 }
 
+namespace {
+
+// glslang's preprocessed text, one output line per line of the source,
+// marked as cpp marks its output: a `# LINE "FILE"` line wherever the next
+// line does not follow the previous one, and no blank lines (a gap of a few
+// lines in one file is kept as blank lines instead of a marker, as cpp does).
+std::string with_line_markers(const std::string& expanded, const Source& source) {
+  std::vector<std::string_view> lines;
+  for (size_t at = 0; at < expanded.size();) {
+    size_t end = expanded.find('\n', at);
+    if (end == std::string::npos) end = expanded.size();
+    lines.emplace_back(expanded.data() + at, end - at);
+    at = end + 1;
+  }
+  if (lines.size() != source.line_map.size()) return expanded;  // not line for line: leave it as glslang gave it
+  constexpr int kMaxBlankGap = 8;
+  std::string out, file;
+  int next = 0;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find_first_not_of(" \t\r") == std::string_view::npos) continue;
+    auto [path, line] = source.locate(static_cast<int>(i) + 1);
+    if (path.empty()) path = "<raymarching>", line = 0;  // a line the host adds
+    if (i == 0) {  // #version stays first
+    } else if (path != file || (line != 0 && line != next)) {
+      if (path == file && line > next && line - next <= kMaxBlankGap) {
+        out.append(static_cast<size_t>(line - next), '\n');
+      } else {
+        out += "# " + std::to_string(std::max(line, 1)) + " \"" + path + "\"\n";
+      }
+    }
+    file = path;
+    next = line + 1;
+    out += lines[i];
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace
+
 std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags) {
   ensure_glslang_initialized();
   glslang::TShader shader(EShLangFragment);
@@ -248,7 +288,7 @@ std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics
     *diags = map_log(shader.getInfoLog(), source, LogFormat::Glslang);
     return std::nullopt;
   }
-  return out;
+  return with_line_markers(out, source);
 }
 
 std::optional<std::string> active_code(const std::string& text) {

@@ -107,8 +107,9 @@ PassWalk walk_passes(const fs::path& image, const std::function<const Source*(co
 Source check_project(const ProjectFiles& from, const SourceOptions& options, Diagnostics* diags) {
   const SourceOptions with_common = with_forced(options, from.forced_includes);
   std::map<fs::path, Source> sources;
+  const fs::path image = fs::absolute(from.image).lexically_normal();  // as the passes name each other
   walk_passes(
-      from.image,
+      image,
       [&](const fs::path& file) -> const Source* {
         Diagnostics found;
         Source source = check_scene(file, with_common, &found, from.files);
@@ -117,8 +118,8 @@ Source check_project(const ProjectFiles& from, const SourceOptions& options, Dia
         return &(sources[file] = std::move(source));
       },
       diags);
-  auto image = sources.find(fs::absolute(from.image).lexically_normal());
-  return image == sources.end() ? Source{} : image->second;
+  auto found = sources.find(image);
+  return found == sources.end() ? Source{} : found->second;
 }
 
 ReloadStatus Project::reload() {

@@ -30,6 +30,23 @@ TEST_F(Cli, HelpAndVersionExitZero) {
   EXPECT_EQ(run("render --help").status, 0);
 }
 
+// Each command's help shows what that command takes: the window's keys
+// only in the window's (the default command's) help.
+TEST_F(Cli, EachHelpShowsItsOwnCommand) {
+  auto help = [&](const std::string& args) {
+    const std::string out = (dir_ / "help.txt").string();
+    EXPECT_EQ(std::system((std::string(RM_BINARY) + " " + args + " > " + out).c_str()), 0);
+    return test::read_file(out);
+  };
+  EXPECT_NE(help("--help").find("left drag"), std::string::npos);
+  for (const char* command : {"render", "check", "accuracy", "import"}) {
+    const std::string text = help(std::string(command) + " --help");
+    EXPECT_EQ(text.find("left drag"), std::string::npos) << command << "\n" << text;
+    EXPECT_NE(text.find("exit status: 0 ok"), std::string::npos) << command << "\n" << text;
+  }
+}
+
+// Silent on success, as compilers and linters are: exit 0 and no output.
 TEST_F(Cli, CheckOfAGoodShaderIsSilent) {
   test::Outcome r = run("check " + good());
   EXPECT_EQ(r.status, 0);
@@ -70,6 +87,23 @@ TEST_F(Cli, DefinesAndIncludeDirsWorkAsInACompiler) {
 
 // `check -E` prints what the compiler sees, as a compiler's -E does: macros
 // (including -D ones) expanded, branches not taken gone.
+// -E marks where lines come from as cpp does, drops blank runs, and takes a
+// scene named relative to the working directory.
+TEST_F(Cli, CheckExpandMarksFilesAndLinesAndDropsBlankRuns) {
+  write_file(dir_ / "lib.glsl", "float f() { return 1.0; }\n\n\n\n\n\n\n\n\n\n\n\nfloat g() { return 2.0; }\n");
+  write_file(dir_ / "s.frag", "#include \"lib.glsl\"\n#if 0\nnot this\n#endif\n"
+                              "void mainImage(out vec4 c, in vec2 p) { c = vec4(f() + g()); }\n");
+  const std::string out = (dir_ / "expanded.glsl").string();
+  const std::string cmd = "cd " + dir_.path().string() + " && " + RM_BINARY + " check -E s.frag > " + out;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string text = test::read_file(out);
+  const std::string lib = (dir_ / "lib.glsl").string(), scene = (dir_ / "s.frag").string();
+  EXPECT_NE(text.find("# 1 \"" + lib + "\"\nfloat f()"), std::string::npos) << text;
+  EXPECT_NE(text.find("# 13 \"" + lib + "\"\nfloat g()"), std::string::npos) << "a gap of 11 lines is a marker\n" << text;
+  EXPECT_NE(text.find("# 5 \"" + scene + "\"\nvoid mainImage"), std::string::npos) << text;
+  EXPECT_EQ(text.find("\n\n"), std::string::npos) << "no blank lines\n" << text;
+}
+
 TEST_F(Cli, CheckExpandPrintsThePreprocessedSource) {
   write_file(dir_ / "e.frag", "#ifdef FANCY\nfloat fancy_marker;\n#endif\n"
                               "void mainImage(out vec4 c, in vec2 f) { c = vec4(LEVEL); }\n");
@@ -126,7 +160,9 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --mouse a,b", "--mouse 'a'"},
       {"render " + g + " -o " + out + " --time soon", "--time 'soon'"},
       {"render " + g + " -o " + out + " --time nan", "--time 'nan'"},
-      {"render " + g + " -o " + (dir_ / "o.xyz").string(), "unknown image format"},
+      // The formats named are the ones that work: .jpg among them, not only .png and .exr.
+      {"render " + g + " -o " + (dir_ / "o.xyz").string(), "cannot write images of type '.xyz' (.exr, .tif, .jpg"},
+      {"render " + g + " -o " + (dir_ / "noext").string(), "has no extension to choose an image format (.exr"},
       {"render " + g + " -o " + (dir_ / "nodir/o.png").string(), "does not exist"},
       {"render " + g + " -o " + (dir_ / "frame.png").string() + " --frames 3", "counter"},
       {"render " + g + " -o " + out + " --channel0 " + (dir_ / "none.png").string(), "--channel0 '" + (dir_ / "none.png").string() + "': no such file"},
