@@ -72,7 +72,7 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
   if (at < text.size() && text[at] == '"') {
     const size_t end = text.find('"', at + 1);
     if (end == std::string_view::npos || end == at + 1) {
-      *error = "expects \"FILE\", self or keyboard";
+      *error = "expects \"FILE\", self, keyboard or black";
       return std::nullopt;
     }
     spec.path = (relative_to / std::string(text.substr(at + 1, end - at - 1))).lexically_normal();
@@ -86,8 +86,9 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
     const std::string_view word = next_word(text, &at);
     if (word == "self") spec.kind = ChannelSpec::Kind::Self;
     else if (word == "keyboard") spec.kind = ChannelSpec::Kind::Keyboard;
+    else if (word == "black") spec.kind = ChannelSpec::Kind::Black;
     else {
-      *error = "expects \"FILE\", self or keyboard";
+      *error = "expects \"FILE\", self, keyboard or black";
       return std::nullopt;
     }
   }
@@ -102,6 +103,11 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
     if (shape_word && !first) {
       *error = "'" + std::string(word) + "' goes right after the file name";
       return std::nullopt;
+    }
+    if (shape_word && spec.kind == ChannelSpec::Kind::Black) {
+      spec.shape = word == "cube" ? ChannelSpec::Shape::Cube : ChannelSpec::Shape::Volume;  // a black cube or volume
+      first = false;
+      continue;
     }
     if (shape_word && (spec.kind == ChannelSpec::Kind::Keyboard ||
                        (word == "volume" && spec.kind != ChannelSpec::Kind::Image))) {
@@ -121,7 +127,10 @@ std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::
 
 std::string channel_spec_text(const ChannelSpec& spec, const std::string& file) {
   using K = ChannelSpec::Kind;
-  std::string out = spec.kind == K::Self ? "self" : spec.kind == K::Keyboard ? "keyboard" : "\"" + file + "\"";
+  std::string out = spec.kind == K::Self       ? "self"
+                    : spec.kind == K::Keyboard ? "keyboard"
+                    : spec.kind == K::Black    ? "black"
+                                               : "\"" + file + "\"";
   if (spec.shape == ChannelSpec::Shape::Cube) out += " cube";
   if (spec.shape == ChannelSpec::Shape::Volume) out += " volume";
   if (spec.cube_size > 0) out += " size=" + std::to_string(spec.cube_size);
@@ -161,6 +170,7 @@ const char* to_string(ChannelSpec::Kind kind) {
     case ChannelSpec::Kind::Pass: return "buffer";
     case ChannelSpec::Kind::Self: return "self";
     case ChannelSpec::Kind::Keyboard: return "keyboard";
+    case ChannelSpec::Kind::Black: return "black";
   }
   return "?";
 }

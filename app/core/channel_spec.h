@@ -3,6 +3,7 @@
 //   #pragma channel1 "buffer_a.frag"            a buffer pass (.frag/.glsl)
 //   #pragma channel2 self                       this pass's previous frame
 //   #pragma channel3 keyboard                   the 256x3 keyboard texture
+//   #pragma channel3 black                      nothing, on purpose: transparent black, no warning
 //   #pragma channel0 "sky.png" cube             a cube map: six faces, a cross or a panorama
 //   #pragma channel0 "cube_a.frag" cube         a Cube A pass (mainCubemap)
 //   #pragma channel1 "noise.bin" volume         a volume (sampler3D)
@@ -33,7 +34,7 @@ struct Sampler {
 };
 
 struct ChannelSpec {
-  enum class Kind { None, Image, Pass, Self, Keyboard };
+  enum class Kind { None, Image, Pass, Self, Keyboard, Black };
   // What the shader samples: the prelude declares sampler2D, samplerCube or sampler3D.
   enum class Shape { Flat, Cube, Volume };
   static constexpr int kDefaultCubeSize = 1024;
@@ -52,7 +53,7 @@ Sampler default_sampler(ChannelSpec::Kind kind, ChannelSpec::Shape shape = Chann
 bool is_shader_file(const std::filesystem::path& path);
 
 // Reads what follows "#pragma channelN": a quoted file (relative to
-// `relative_to`), `self` or `keyboard`, then sampler settings. nullopt with
+// `relative_to`), `self`, `keyboard` or `black`, then sampler settings. nullopt with
 // *error set on anything else.
 std::optional<ChannelSpec> parse_channel_spec(std::string_view text, const std::filesystem::path& relative_to,
                                               std::string* error);

@@ -54,7 +54,7 @@ const Source& Project::image_source() const {
 }
 
 PassWalk walk_passes(const fs::path& image, const std::function<const Source*(const fs::path&)>& visit,
-                     Diagnostics* diags) {
+                     Diagnostics* diags, const std::array<bool, 4>& image_channels_given) {
   PassWalk walk;
   walk.reached = {image};
   auto graph_error = [&](const fs::path& file, std::string message) {
@@ -74,6 +74,11 @@ PassWalk walk_passes(const fs::path& image, const std::function<const Source*(co
       continue;
     }
     sources[file] = source;
+    std::array<bool, 4> bound{};
+    for (size_t c = 0; c < 4; ++c)
+      bound[c] = source->channels[c].kind != ChannelSpec::Kind::None || (i == 0 && image_channels_given[c]);
+    const Diagnostics unbound = unbound_channel_reads(*source, bound);
+    diags->insert(diags->end(), unbound.begin(), unbound.end());
     if (i == 0 && source->cubemap)
       graph_error(image, "the image pass defines mainCubemap: open the pass that reads the cube map");
     for (const ChannelSpec& channel : source->channels) {
@@ -124,6 +129,8 @@ Source check_project(const ProjectFiles& from, const SourceOptions& options, Dia
 
 ReloadStatus Project::reload() {
   diagnostics_.clear();
+  std::array<bool, 4> channels_given{};
+  for (size_t c = 0; c < 4; ++c) channels_given[c] = !channel_overrides_[c].empty();
   bool changed = false;
   std::vector<fs::path> swapped;  // passes with a new program
   // Every pass reachable from the image pass, the image first.
@@ -142,7 +149,7 @@ ReloadStatus Project::reload() {
           return nullptr;
         return &scene.latest_source();
       },
-      &diagnostics_);
+      &diagnostics_, channels_given);
   const std::vector<fs::path>& reached = walk.reached;
   const std::map<fs::path, int>& cube_size = walk.cube_size;
   const bool failed = !walk.ok;

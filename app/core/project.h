@@ -49,8 +49,10 @@ struct PassWalk {
   std::map<fs::path, int> cube_size;   // the Cube A passes: the largest size=N a reader gives; 0: none
   bool ok = true;                      // every pass built, and the graph holds together
 };
+// Also warns of channels a pass reads with nothing bound (`image_channels_given`:
+// the command line's --channelN files, which bind the image pass's channels).
 PassWalk walk_passes(const fs::path& image, const std::function<const Source*(const fs::path&)>& visit,
-                     Diagnostics* diags);
+                     Diagnostics* diags, const std::array<bool, 4>& image_channels_given = {});
 
 // `check`: preprocesses and validates every pass with glslang, with no GL.
 // Returns the image pass's source (empty if it failed).

@@ -181,21 +181,23 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         if (index < 0 && previz != std::string::npos && previz + 7 < src.size()) index = src[previz + 7] - '0';
         if (index < 0 || index > 3) {
           project.warnings.push_back(where + ": a buffer input that names no buffer; it reads black");
-          continue;
+          spec.kind = ChannelSpec::Kind::Black;
+        } else {
+          spec.kind = ChannelSpec::Kind::Pass;
+          file = buffer_file(index);
         }
-        spec.kind = ChannelSpec::Kind::Pass;
-        file = buffer_file(index);
       } else if (ctype == "cubemap" &&
                  (std::find(cube_outputs.begin(), cube_outputs.end(), text_of(input.value("id", json()))) !=
                       cube_outputs.end() ||
                   src.find("previz/cubemap") != std::string::npos)) {
         if (cube_outputs.empty()) {
           project.warnings.push_back(where + ": reads Cube A, which the JSON does not hold; it reads black");
-          continue;
+          spec.kind = ChannelSpec::Kind::Black;
+        } else {
+          spec.kind = ChannelSpec::Kind::Pass;
+          file = kCubeFile;
         }
-        spec.kind = ChannelSpec::Kind::Pass;
         spec.shape = ChannelSpec::Shape::Cube;
-        file = kCubeFile;
       } else if (ctype == "keyboard") {
         spec.kind = ChannelSpec::Kind::Keyboard;
       } else if (ctype == "texture" || ctype == "cubemap" || ctype == "volume") {
@@ -212,6 +214,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
                                       (media_dir.empty() ? "" : " '" + media_dir.string() + "'");
           if (ctype == "volume") {
             project.warnings.push_back(missing + "; it reads black");
+            spec.kind = ChannelSpec::Kind::Black;
           } else if (ctype == "cubemap") {
             project.warnings.push_back(missing + "; a sky stands in for it");
             spec.kind = ChannelSpec::Kind::Pass;
@@ -228,7 +231,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         }
       } else {
         project.warnings.push_back(where + ": input type '" + ctype + "' is not supported; it reads black");
-        continue;
+        spec.kind = ChannelSpec::Kind::Black;
       }
       spec.sampler = sampler_of(input, stand_in ? ChannelSpec::Kind::Image : spec.kind, spec.shape);
       text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";

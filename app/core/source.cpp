@@ -480,4 +480,32 @@ Source preprocess(const fs::path& scene, const SourceOptions& options, const Fil
   return Preprocessor(options, files).run(scene);
 }
 
+Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound) {
+  Diagnostics out;
+  std::array<bool, 4> warned = bound;
+  const std::string code = lexing::strip_comments(source.text);
+  for_each_line(code, [&](std::string_view line, int number) {
+    if (static_cast<size_t>(number) > source.line_map.size() || source.line_map[static_cast<size_t>(number) - 1].file < 0)
+      return true;  // the host's own lines (the prelude declares every channel)
+    for (int c = 0; c < 4; ++c) {
+      const std::string name = "iChannel" + std::to_string(c);
+      if (warned[static_cast<size_t>(c)] || !lexing::has_word(line, name)) continue;
+      warned[static_cast<size_t>(c)] = true;
+      auto [path, at_line] = source.locate(number);
+      Diagnostic d;
+      d.severity = Severity::Warning;
+      d.path = path;
+      d.line = at_line;
+      const std::string text = source.final_line_text(number);
+      const size_t column = text.find(name);
+      d.column = column == std::string::npos ? 0 : static_cast<int>(column) + 1;
+      d.message = name + " is read but nothing is bound to it, so it reads transparent black (#pragma channel" +
+                  std::to_string(c) + " \"FILE\" names an input)";
+      out.push_back(std::move(d));
+    }
+    return true;
+  });
+  return out;
+}
+
 }  // namespace rm

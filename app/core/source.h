@@ -85,4 +85,9 @@ struct Source {
 Source preprocess(const fs::path& scene, const SourceOptions& options,
                   const FileSystem& fs = disk_file_system());
 
+// One warning per channel that the shader's own code reads while nothing is
+// bound to it (`bound[c]` false): it would read transparent black without a
+// word. Each names the first line that reads it.
+Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound);
+
 }  // namespace rm

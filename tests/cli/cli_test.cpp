@@ -46,6 +46,27 @@ TEST_F(Cli, EachHelpShowsItsOwnCommand) {
   }
 }
 
+// A channel the code reads with nothing bound is one warning at the first
+// line that reads it; a --channelN file or `#pragma channelN black` binds it.
+TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
+  write_file(dir_ / "u.frag", "void mainImage(out vec4 c, in vec2 f) {\n  // iChannel2 in a comment is no read\n"
+                              "  c = texture(iChannel1, f) + texture(iChannel1, f);\n}\n");
+  const std::string scene = (dir_ / "u.frag").string();
+  test::Outcome r = run("check " + scene);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.err, scene + ":3:15: warning: iChannel1 is read but nothing is bound to it, so it reads transparent "
+                           "black (#pragma channel1 \"FILE\" names an input)\n");
+  r = run("render " + scene + " -o " + (dir_ / "o.png").string() + " --size 4x4 --channel1 " +
+          std::string(RM_TEST_DATA_DIR) + "/../../examples/textures/phone_screen.png");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  write_file(dir_ / "u.frag", "#pragma channel1 black\n"
+                              "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel1, f); }\n");
+  r = run("check " + scene);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.err, "");
+}
+
 // Silent on success, as compilers and linters are: exit 0 and no output.
 TEST_F(Cli, CheckOfAGoodShaderIsSilent) {
   test::Outcome r = run("check " + good());
