@@ -87,3 +87,20 @@ def mean_colour(image):
     scale = 255.0 if "(of 255)" in stats else 1.0
     colour = [float(v) / scale for v in avg.groups()] if avg else None
     return colour, (int(size.group(1)), int(size.group(2))) if size else None
+
+
+def open_window(args, stdout_path, stderr_path, cwd):
+    """Starts the program (a window) with its output in files. An X server
+    resets when its last client leaves, and a window opened in that moment
+    fails with "Failed to open display" (seen in CI between two windows of
+    one test): such a start is tried again, up to three times."""
+    for attempt in range(3):
+        proc = subprocess.Popen(args, stdout=open(stdout_path, "w"), stderr=open(stderr_path, "w"), cwd=cwd)
+        try:
+            proc.wait(timeout=2.0)
+        except subprocess.TimeoutExpired:
+            return proc  # still running: it has its display
+        if "Failed to open display" not in open(stderr_path).read() or attempt == 2:
+            return proc
+        time.sleep(0.5)
+    return proc

@@ -21,8 +21,8 @@ import sys
 import tempfile
 import time
 
-from harness import (check, cpu_seconds, mean_colour, metadata, save_by_rename, summary, take_screenshot,
-                     wait_for, xdotool)
+from harness import (check, cpu_seconds, mean_colour, metadata, open_window, save_by_rename, summary,
+                     take_screenshot, wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 SIZE = (320, 180)
@@ -60,8 +60,8 @@ def main():
     os.mkdir(shots)
     err_path = os.path.join(work, "stderr.txt")
     out_path = os.path.join(work, "stdout.txt")
-    proc = subprocess.Popen([BINARY, scene, "--size", f"{SIZE[0]}x{SIZE[1]}", "--shot-dir", shots, "-v"],
-                            stdout=open(out_path, "w"), stderr=open(err_path, "w"), cwd=work)
+    proc = open_window([BINARY, scene, "--size", f"{SIZE[0]}x{SIZE[1]}", "--shot-dir", shots, "-v"],
+                       out_path, err_path, work)
 
     def stderr():
         return open(err_path).read()
@@ -163,8 +163,8 @@ def scene_default_channel():
         f.write('#pragma channel0 "tex.png"\n'
                 "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }\n")
     out_path = os.path.join(work, "stdout.txt")
-    proc = subprocess.Popen([BINARY, scene, "--size", "64x64", "--shot-dir", work, "-v"],
-                            stdout=open(out_path, "w"), stderr=subprocess.DEVNULL, cwd=work)
+    proc = open_window([BINARY, scene, "--size", "64x64", "--shot-dir", work, "-v"], out_path,
+                       os.path.join(work, "stderr.txt"), work)
     window = wait_for(lambda: xdotool("search", "--name", "textured.frag"))
     if not window:
         proc.kill()
@@ -213,8 +213,8 @@ def project_session():
         with open(os.path.join(work, name), "w") as f:
             f.write(text)
     err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
-    proc = subprocess.Popen([BINARY, os.path.join(work, "image.frag"), "--size", "200x120", "--shot-dir", work, "-v"],
-                            stdout=open(out_path, "w"), stderr=open(err_path, "w"), cwd=work)
+    proc = open_window([BINARY, os.path.join(work, "image.frag"), "--size", "200x120", "--shot-dir", work, "-v"],
+                       out_path, err_path, work)
     window = wait_for(lambda: xdotool("search", "--name", "image.frag"))
     if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
         proc.kill()
@@ -275,8 +275,7 @@ def idle_session(source, name, action=None):
     with open(scene, "w") as f:
         f.write(source)
     err_path = os.path.join(work, "stderr.txt")
-    proc = subprocess.Popen([BINARY, scene, "--size", "320x180", "-v"], stdout=subprocess.DEVNULL,
-                            stderr=open(err_path, "w"), cwd=work)
+    proc = open_window([BINARY, scene, "--size", "320x180", "-v"], os.path.join(work, "stdout.txt"), err_path, work)
     window = wait_for(lambda: xdotool("search", "--name", name), timeout=40)
     if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read(), timeout=40):
         proc.kill()
