@@ -18,6 +18,8 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--frames", frames_, "Render COUNT frames; OUT needs a counter like frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
   c.add_option("--fps", fps_, "Frames per second of a sequence")->type_name("F")->check(CLI::Range(0.001, 100000.0));
   c.add_option("--mouse", mouse_, "iMouse as X,Y[,CX,CY] in pixels")->type_name("X,Y[,CX,CY]");
+  c.add_option("--set", sets_, "A value for one of the shader's own uniforms (repeatable; a screenshot records "
+                               "every value this way)")->type_name("NAME=VALUE");
   c.add_option("--date", date_, "iDate as local YYYY-MM-DDTHH:MM:SS[.sss] (default: now)")->type_name("DATE");
   c.add_option("--view", view_, "A debug view instead of the picture: map() calls per pixel as a heatmap, "
                                 "normals, depth, or NaN/Inf pixels in magenta")
@@ -42,6 +44,7 @@ int RenderCommand::run() const {
   if (!date_.empty()) req.date = parse_date(date_);
   req.channels = channels_.get();
   req.media = media_;
+  req.sets = sets_;
   return render_command(req);
 }
 

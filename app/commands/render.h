@@ -3,6 +3,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "commands/cli_options.h"
 
@@ -17,6 +18,7 @@ class RenderCommand {
  private:
   CLI::App* command_;
   std::string scene_, out_, size_ = "640x360", time_ = "0", mouse_, date_, view_;
+  std::vector<std::string> sets_;  // --set NAME=VALUE
   int frame_ = -1, frames_ = 0;
   double fps_ = 60.0;
   SourceFlags source_;

@@ -197,6 +197,10 @@ Metadata frame_metadata(const fs::path& scene, const FrameInputs& in) {
     command += " " + std::string(input.render_option) + " " + value;
     out.emplace_back("raymarching:" + std::string(input.name), std::move(value));
   }
+  for (const UniformValue& u : in.uniforms) {
+    command += " --set " + u.name + "=" + u.text;
+    out.emplace_back("raymarching:uniform:" + u.name, u.text);
+  }
   out.emplace_back("ImageDescription", std::move(command));
   return out;
 }

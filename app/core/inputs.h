@@ -3,10 +3,20 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 namespace rm {
+
+// A value of one of the shader's own uniforms (core/user_uniforms.h), as
+// `render --set NAME=TEXT` gives it and a screenshot records it.
+struct UniformValue {
+  std::string name;
+  std::vector<float> value;  // 1 to 4 components
+  std::string text;          // as written: "1.5", "true", "0.1,0.2,0.3"
+};
 
 struct FrameInputs {
   glm::vec3 resolution{1.0f, 1.0f, 1.0f};  // z is the pixel aspect ratio: 1
@@ -20,6 +30,7 @@ struct FrameInputs {
   float sample_rate = 44100.0f;
   glm::vec2 frag_coord_offset{0.0f};       // tile origin when rendering in tiles
   int cube_face = 0;                       // the face a Cube A pass draws
+  std::vector<UniformValue> uniforms;      // the shader's own uniforms, set in every pass that declares them
 };
 
 // Shadertoy's iMouse: xy follows the pointer while the left button is held and

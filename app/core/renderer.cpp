@@ -32,6 +32,7 @@ Renderer::Renderer() : vao_(gl::make_vertex_array()) {
 
 void Renderer::draw(const Program& program, const FrameInputs& in, const ChannelInputs& channels, glm::ivec2 size) const {
   set_host_inputs(program, in);
+  for (const UniformValue& u : in.uniforms) program.set(u.name, u.value.data(), static_cast<int>(u.value.size()));
   for (int i = 0; i < 4; ++i) {
     const ChannelInput& c = channels[static_cast<size_t>(i)];
     glBindTextureUnit(static_cast<GLuint>(i), c.texture);

@@ -13,4 +13,5 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/channel_spec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/host_inputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/program.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
 )

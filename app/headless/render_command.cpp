@@ -13,6 +13,7 @@
 #include "core/frame_graph.h"
 #include "core/project.h"
 #include "core/renderer.h"
+#include "core/user_uniforms.h"
 #include "core/scene.h"
 #include "headless/egl_context.h"
 
@@ -98,6 +99,13 @@ int render_command(const RenderRequest& req) {
   FrameGraph graph(renderer);
   if (!graph.update(project, &error)) return fail(error, kExitUsage);
 
+  // The shader's own uniforms: at their declared defaults, then --set.
+  UserUniforms uniforms;
+  for (const Pass& pass : project.passes()) merge_user_uniforms(&uniforms, find_user_uniforms(pass.scene->source()));
+  print_diagnostics(uniforms.warnings);
+  const auto values = uniform_values(uniforms, req.sets, &error);
+  if (!values) return fail("--set " + error, kExitUsage);
+
   const int count = sequence ? req.frames : 1;
   const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
   const auto date = req.date.value_or(std::chrono::system_clock::now());
@@ -110,6 +118,7 @@ int render_command(const RenderRequest& req) {
     in.frame = frame;
     in.mouse = req.mouse;
     in.cursor = glm::vec2(req.mouse);
+    in.uniforms = *values;
     in.date = date_of(date + std::chrono::duration_cast<std::chrono::system_clock::duration>(
                                  std::chrono::duration<double>(since_first)));
     return in;

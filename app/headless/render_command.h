@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -27,6 +28,7 @@ struct RenderRequest {
   std::filesystem::path media;  // a .json's shadertoy.com media
   std::optional<std::chrono::system_clock::time_point> date;  // default: now
   View view = View::Picture;  // --view: a debug view instead of the picture
+  std::vector<std::string> sets;  // --set NAME=VALUE: the shader's own uniforms
 };
 
 int render_command(const RenderRequest& request);

@@ -67,6 +67,32 @@ TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
   EXPECT_EQ(r.err, "");
 }
 
+// render --set gives the shader's own uniforms their values; the picture's
+// metadata records every value, so its own command line renders it again.
+TEST_F(Cli, RenderSetGivesUniformsAndTheMetadataReproducesThem) {
+  write_file(dir_ / "u.frag", "uniform float gain;  // ui: min=0 max=2 default=0.5\n"
+                              "uniform vec3 tint;   // ui: color default=1,1,1\n"
+                              "void mainImage(out vec4 c, in vec2 f) { c = vec4(gain * tint, 1.0); }\n");
+  const std::string scene = (dir_ / "u.frag").string(), first = (dir_ / "a.exr").string();
+  test::Outcome r = run("render " + scene + " -o " + (dir_ / "default.exr").string() + " --size 2x2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(test::read_pixels(dir_ / "default.exr")[0], 0.5f) << "the declared default";
+  r = run("render " + scene + " -o " + first + " --size 2x2 --set gain=2 --set tint=0.25,0.5,1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<float> pixels = test::read_pixels(first);
+  ASSERT_EQ(pixels.size(), 16u);
+  EXPECT_EQ(std::vector<float>(pixels.begin(), pixels.begin() + 3), (std::vector<float>{0.5f, 1.0f, 2.0f}));
+  const std::string command = OIIO::ImageInput::open(first)->spec().get_string_attribute("ImageDescription");
+  EXPECT_NE(command.find("--set gain=2 --set tint=0.25,0.5,1"), std::string::npos) << command;
+  ASSERT_EQ(command.rfind("raymarching render ", 0), 0u) << command;
+  r = run(command.substr(std::string("raymarching ").size()) + " -o " + (dir_ / "again.exr").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(test::read_pixels(dir_ / "again.exr"), test::read_pixels(first));
+  r = run("render " + scene + " -o " + first + " --set gian=1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: --set the shader declares no uniform 'gian' of its own (it has gain, tint)\n");
+}
+
 // Silent on success, as compilers and linters are: exit 0 and no output.
 TEST_F(Cli, CheckOfAGoodShaderIsSilent) {
   test::Outcome r = run("check " + good());

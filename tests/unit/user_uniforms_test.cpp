@@ -1,0 +1,95 @@
+// The shader's own uniforms: every type with a control, the `// ui:`
+// annotation, arrays and bad annotations (warnings, never failures),
+// uniforms in inactive #if blocks, and the values `--set` gives.
+#include <gtest/gtest.h>
+
+#include "core/user_uniforms.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+UserUniforms uniforms_of(const std::string& text) {
+  test::TempDir dir;
+  test::write_file(dir / "s.frag", text + "void mainImage(out vec4 c, in vec2 f) { c = vec4(0); }\n");
+  const Source source = preprocess(dir / "s.frag", {});
+  EXPECT_TRUE(source.ok()) << join(source.errors);
+  return find_user_uniforms(source);
+}
+
+TEST(UserUniforms, EveryTypeWithItsAnnotation) {
+  const UserUniforms u = uniforms_of(
+      "uniform float speed;   // ui: min=0 max=4 step=0.1 default=1\n"
+      "uniform int count;     // ui: min=1 max=8 default=3\n"
+      "uniform bool rings;    // ui: default=true\n"
+      "uniform vec2 offset;\n"
+      "uniform highp vec3 tint;  // ui: color default=1,0.5,0.2\n"
+      "uniform vec4 glow, haze;  // ui: colour\n"
+      "uniform float iTime;  // the host's: no control\n");
+  ASSERT_EQ(u.uniforms.size(), 7u);
+  EXPECT_TRUE(u.warnings.empty()) << join(u.warnings);
+  const UserUniform& speed = u.uniforms[0];
+  EXPECT_EQ(speed.name, "speed");
+  EXPECT_EQ(speed.type, UserUniform::Type::Float);
+  EXPECT_EQ(speed.min, 0.0f);
+  EXPECT_EQ(speed.max, 4.0f);
+  EXPECT_FLOAT_EQ(speed.step, 0.1f);
+  EXPECT_EQ(speed.initial, std::vector<float>{1.0f});
+  EXPECT_EQ(speed.line, 1);
+  EXPECT_EQ(u.uniforms[1].type, UserUniform::Type::Int);
+  EXPECT_EQ(u.uniforms[1].initial, std::vector<float>{3.0f});
+  EXPECT_EQ(u.uniforms[2].initial, std::vector<float>{1.0f}) << "true";
+  EXPECT_EQ(u.uniforms[3].components, 2);
+  EXPECT_EQ(u.uniforms[3].initial, (std::vector<float>{0, 0})) << "no annotation: zeros";
+  EXPECT_TRUE(u.uniforms[4].color);
+  EXPECT_EQ(u.uniforms[4].initial, (std::vector<float>{1.0f, 0.5f, 0.2f}));
+  EXPECT_EQ(u.uniforms[5].name, "glow");
+  EXPECT_EQ(u.uniforms[6].name, "haze");
+  EXPECT_TRUE(u.uniforms[6].color) << "the annotation is the whole declaration's";
+}
+
+TEST(UserUniforms, ArraysAndBadAnnotationsAreWarningsNeverFailures) {
+  const UserUniforms u = uniforms_of("uniform float weights[3];\n"
+                                     "uniform float a;  // ui: max=x wat\n"
+                                     "uniform float b;  // ui: color default=1,2\n"
+                                     "uniform mat3 m;   // no control, no word\n");
+  ASSERT_EQ(u.uniforms.size(), 2u);
+  EXPECT_EQ(u.uniforms[0].name, "a");
+  ASSERT_EQ(u.warnings.size(), 5u) << join(u.warnings);
+  EXPECT_NE(u.warnings[0].message.find("weights is an array: it gets no control"), std::string::npos);
+  EXPECT_EQ(u.warnings[0].line, 1);
+  EXPECT_NE(u.warnings[1].message.find("max=x is not a number"), std::string::npos);
+  EXPECT_NE(u.warnings[2].message.find("'wat' is not understood"), std::string::npos);
+  EXPECT_NE(u.warnings[3].message.find("only a vec3 or vec4 can be a colour"), std::string::npos);
+  EXPECT_NE(u.warnings[4].message.find("default=1,2"), std::string::npos);
+  for (const Diagnostic& w : u.warnings) EXPECT_EQ(w.severity, Severity::Warning);
+}
+
+TEST(UserUniforms, OnlyTheActiveCodeCounts) {
+  const UserUniforms u = uniforms_of("#ifdef NEVER\nuniform float hidden;\n#else\nuniform float shown;\n#endif\n"
+                                     "// uniform float commented;\n");
+  ASSERT_EQ(u.uniforms.size(), 1u);
+  EXPECT_EQ(u.uniforms[0].name, "shown");
+}
+
+TEST(UserUniforms, SetGivesValuesAndRefusesWhatDoesNotFit) {
+  const UserUniforms u = uniforms_of("uniform float speed;  // ui: default=1\nuniform vec3 tint;\nuniform bool on;\n");
+  std::string error;
+  auto values = uniform_values(u, {"tint=0.1,0.2,0.3", "on=true"}, &error);
+  ASSERT_TRUE(values) << error;
+  ASSERT_EQ(values->size(), 3u);
+  EXPECT_EQ((*values)[0].text, "1") << "the default";
+  EXPECT_EQ((*values)[1].value, (std::vector<float>{0.1f, 0.2f, 0.3f}));
+  EXPECT_EQ((*values)[2].text, "true");
+  EXPECT_FALSE(uniform_values(u, {"nope=1"}, &error));
+  EXPECT_EQ(error, "the shader declares no uniform 'nope' of its own (it has speed, tint, on)");
+  EXPECT_FALSE(uniform_values(u, {"tint=1,2"}, &error));
+  EXPECT_EQ(error, "tint: '1,2' has 2 numbers; tint takes 3");
+  EXPECT_FALSE(uniform_values(u, {"on=maybe"}, &error));
+  EXPECT_FALSE(uniform_values(u, {"speed"}, &error));
+  EXPECT_EQ(error, "'speed' is not NAME=VALUE");
+  EXPECT_EQ(uniform_value_text(UserUniform::Type::Float, {-0.0f}), "0") << "never -0";
+}
+
+}  // namespace
+}  // namespace rm
