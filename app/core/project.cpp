@@ -239,6 +239,12 @@ bool Project::reads_keyboard() const {
   return false;
 }
 
+UserUniforms Project::user_uniforms() const {
+  UserUniforms all;
+  for (const Pass& pass : passes_) merge_user_uniforms(&all, find_user_uniforms(pass.scene->source()));
+  return all;
+}
+
 InputUse Project::inputs_read() const {
   InputUse use;
   for (const Pass& pass : passes_) {

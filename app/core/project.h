@@ -17,6 +17,7 @@
 
 #include "core/host_inputs.h"
 #include "core/scene.h"
+#include "core/user_uniforms.h"
 
 namespace rm {
 
@@ -94,6 +95,10 @@ class Project {
   // What changes the picture from frame to frame, over all passes: a pass
   // that reads a previous frame (itself or a later buffer) is animated.
   InputUse inputs_read() const;
+  // The shader's own uniforms over all passes (core/user_uniforms.h), and
+  // their declared defaults: what every front end hands a frame unless told
+  // otherwise (render --set).
+  UserUniforms user_uniforms() const;
   bool reads_keyboard() const;
   bool has_feedback() const;
   // Whether pass `reader` sees `buffer`'s output of this frame (it drew

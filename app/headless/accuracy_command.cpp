@@ -136,6 +136,8 @@ class Bench {
     FrameGraph color_graph(renderer_), data_graph(renderer_);
     if (!color_graph.update(color, error) || !data_graph.update(data, error)) return std::nullopt;
     Renders out;
+    std::string no_error;
+    inputs_.uniforms = uniform_values(color.user_uniforms(), {}, &no_error).value_or(std::vector<UniformValue>{});
     std::tie(out.ms, out.wall_ms) = time_frames(color, color_graph);
     out.color = color_graph.render_frame(color, inputs_, req_.size);
     out.data = data_graph.render_frame(data, inputs_, req_.size);
@@ -335,6 +337,7 @@ int accuracy_command(const AccuracyRequest& input) {
       FrameInputs in;
       in.resolution = glm::vec3(req.size, 1.0f);
       in.time = static_cast<float>(req.time);
+      in.uniforms = uniform_values(project.user_uniforms(), {}, &ignored).value_or(std::vector<UniformValue>{});
       write_image(req.out / "steps.png", graph.render_frame(project, in, req.size), {}, Overwrite::Replace, &error);
     }
   }

@@ -100,8 +100,7 @@ int render_command(const RenderRequest& req) {
   if (!graph.update(project, &error)) return fail(error, kExitUsage);
 
   // The shader's own uniforms: at their declared defaults, then --set.
-  UserUniforms uniforms;
-  for (const Pass& pass : project.passes()) merge_user_uniforms(&uniforms, find_user_uniforms(pass.scene->source()));
+  const UserUniforms uniforms = project.user_uniforms();
   print_diagnostics(uniforms.warnings);
   const auto values = uniform_values(uniforms, req.sets, &error);
   if (!values) return fail("--set " + error, kExitUsage);

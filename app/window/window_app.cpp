@@ -145,6 +145,12 @@ class WindowApp {
     if (!diags.empty()) std::cerr << join(diags);
     errors_ = count_errors(diags);
     if (project_.ready()) use_ = project_.inputs_read();
+    if (status == ReloadStatus::Swapped) {  // the shader's own uniforms, at their declared defaults
+      const UserUniforms uniforms = project_.user_uniforms();
+      if (!uniforms.warnings.empty()) std::cerr << join(uniforms.warnings);
+      std::string no_error;
+      inputs_.uniforms = uniform_values(uniforms, {}, &no_error).value_or(std::vector<UniformValue>{});
+    }
     dirty_ = true;  // a new program, or the stale badge and title
     if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error))
       std::cerr << "raymarching: error: " << channel_error << '\n';

@@ -27,11 +27,15 @@ from harness import (check, cpu_seconds, mean_colour, metadata, open_window, sav
 BINARY = os.path.abspath(sys.argv[1])
 SIZE = (320, 180)
 
+# `gain` is the shader's own uniform: the window gives it its declared
+# default, and F12 records it, so `render` of the shot matches.
 SCENE_V1 = """// version 1
+uniform float gain;  // ui: min=0 max=1 default=0.75
 void mainImage(out vec4 c, in vec2 f) {
   vec2 uv = f / iResolution.xy;
   c = vec4(uv, fract(iTime * 0.1), 1.0);
   if (iMouse.z != 0.0) c.rg = iMouse.xy / iResolution.xy;
+  c.rgb *= gain;
 }
 """
 SCENE_V2 = SCENE_V1.replace("// version 1", "// version 2").replace("vec4(uv,", "vec4(1.0 - uv,")
@@ -93,6 +97,8 @@ def main():
         return
     check("screenshot name is scene-YYYYmmdd-HHMMSS-mmm.png",
           re.fullmatch(r"scene-\d{8}-\d{6}-\d{3}\.png", os.path.basename(shot)), shot)
+    check("F12 records the shader's own uniforms", metadata(shot).get("raymarching:uniform:gain") == "0.75",
+          metadata(shot))
     mouse = [float(v) for v in metadata(shot).get("raymarching:iMouse", "0,0,0,0").split(",")]
     check("drag sets iMouse (xy at release, z < 0 after release, press at zw)",
           mouse == [200.0, SIZE[1] - 120.0, -100.0, -(SIZE[1] - 50.0)], mouse)
