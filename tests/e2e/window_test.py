@@ -41,6 +41,17 @@ void mainImage(out vec4 c, in vec2 f) {
 SCENE_V2 = SCENE_V1.replace("// version 1", "// version 2").replace("vec4(uv,", "vec4(1.0 - uv,")
 SCENE_BROKEN = "// broken\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0) +;\n}\n"
 
+def quit_with(proc, window, key):
+    """Presses `key` in the window; returns the exit status, or None if the
+    program had not quit 10 s later (it is then killed)."""
+    xdotool("key", "--window", window, key)
+    try:
+        return proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        return None
+
+
 def matches_render(shot, scene_file, workdir):
     """Renders what the shot's metadata says, headless, and compares pixels."""
     command = shlex.split(metadata(shot)["ImageDescription"])
@@ -150,12 +161,7 @@ def main():
     check("V again returns to the picture", wait_for(lambda: "view:" not in xdotool("getwindowname", window)),
           xdotool("getwindowname", window))
 
-    xdotool("key", "--window", window, "q")
-    try:
-        status = proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        status = None
+    status = quit_with(proc, window, "q")
     check("Q quits with status 0", status == 0, status)
 
 
@@ -256,12 +262,8 @@ def project_session():
     check("... which shows, and the paint in the other buffer stays",
           after is not None and abs(after[2] - 0.75) < 0.01 and after[0] > 0.9, after)
 
-    xdotool("key", "--window", window, "Escape")  # Q belongs to the shader in a keyboard project
-    try:
-        status = proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        status = None
+    # Q belongs to the shader in a keyboard project.
+    status = quit_with(proc, window, "Escape")
     check("Esc quits a keyboard project with status 0", status == 0, status)
 
 
