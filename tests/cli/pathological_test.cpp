@@ -170,6 +170,17 @@ TEST_F(Pathological, FilesThatAreNotRegularFiles) {
     EXPECT_EQ(r.status, 2) << image << "\n" << r.err;
     EXPECT_EQ(r.err, "raymarching: error: --channel0 '" + image + "': " + says + "\n");
   }
+  // Cube maps and volumes go through the same check as flat images.
+  ASSERT_EQ(mkfifo(path("sky.png").c_str(), 0644), 0);
+  ASSERT_EQ(mkfifo(path("noise.bin").c_str(), 0644), 0);
+  for (const std::string shape : {"sky.png\" cube", "noise.bin\" volume"}) {
+    const std::string file = shape.substr(0, shape.find('"'));
+    write_file(dir_ / "shaped.frag", "#pragma channel0 \"" + shape + "\n" + kMain);
+    const test::Outcome r = test::run_binary("render " + path("shaped.frag") + " -o " + path("out.png") + " --size 8x8");
+    EXPECT_EQ(r.status, 2) << shape << "\n" << r.err;
+    EXPECT_EQ(r.err, "raymarching: error: iChannel0 of shaped.frag '" + path(file) +
+                         "': is a named pipe (FIFO), not a regular file\n");
+  }
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
 }
 
