@@ -186,11 +186,17 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
   return std::nullopt;
 }
 
-Metadata frame_metadata(const fs::path& scene, const FrameInputs& in) {
+Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& in) {
   Metadata out{{"raymarching:scene", fs::absolute(scene).lexically_normal().string()}};
-  std::string command = "raymarching render " + scene.string() + " --size " +
-                        std::to_string(static_cast<int>(in.resolution.x)) + "x" +
-                        std::to_string(static_cast<int>(in.resolution.y));
+  std::string command = "raymarching render " + scene.string();
+  for (const fs::path& dir : source.include_dirs) command += " -I " + dir.string();
+  for (const Define& d : source.defines) {
+    const std::string value = d.value.empty() ? "1" : d.value;
+    command += " -D " + d.name + "=" + value;
+    out.emplace_back("raymarching:define:" + d.name, value);
+  }
+  command += " --size " + std::to_string(static_cast<int>(in.resolution.x)) + "x" +
+             std::to_string(static_cast<int>(in.resolution.y));
   for (const HostInput& input : host_inputs()) {
     if (!input.record) continue;
     std::string value = input.record(in);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/renderer.h"
+#include "core/source.h"
 
 namespace rm {
 
@@ -33,9 +34,10 @@ std::string writable_image_extensions();
 std::optional<fs::path> write_image(const fs::path& path, const Image& image, const Metadata& metadata,
                                     Overwrite overwrite, std::string* error);
 
-// What a picture needs to be reproduced: scene, inputs, and the `render`
-// command line that makes it again (stored as ImageDescription).
-Metadata frame_metadata(const fs::path& scene, const FrameInputs& inputs);
+// What a picture needs to be reproduced: scene, -I and -D (the accuracy knobs
+// and the preset among them), inputs, and the `render` command line that makes
+// it again (stored as ImageDescription).
+Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& inputs);
 
 // Reads metadata attributes back (for tests and for reproducing a shot).
 Metadata read_metadata(const fs::path& path);

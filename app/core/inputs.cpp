@@ -27,8 +27,8 @@ float ShaderClock::tick(Clock::time_point now) {
   const double delta = std::chrono::duration<double>(now - last_).count();
   last_ = now;
   if (paused_) return 0.0f;
-  time_ += delta;
-  return static_cast<float>(delta);
+  time_ += delta * speed_;
+  return static_cast<float>(delta * speed_);
 }
 
 glm::vec4 date_of(std::chrono::system_clock::time_point when) {

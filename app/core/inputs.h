@@ -59,12 +59,17 @@ class ShaderClock {
  public:
   using Clock = std::chrono::steady_clock;
   explicit ShaderClock(Clock::time_point now = Clock::now()) : last_(now) {}
-  // Advances to now; returns the delta in seconds (0 while paused).
+  // Advances to now; returns the shader-time delta in seconds (0 while paused).
   float tick(Clock::time_point now = Clock::now());
   void set_paused(bool paused) { paused_ = paused; }
   bool paused() const { return paused_; }
   void restart() { time_ = 0.0; frame_ = 0; }
   void step(double seconds) { time_ = std::max(0.0, time_ + seconds); }
+  void seek(double seconds) { time_ = std::max(0.0, seconds); }
+  // How fast shader time runs against the wall clock, within [kMinSpeed, kMaxSpeed].
+  static constexpr double kMinSpeed = 0.1, kMaxSpeed = 4.0;
+  void set_speed(double speed) { speed_ = std::clamp(speed, kMinSpeed, kMaxSpeed); }
+  double speed() const { return speed_; }
   void next_frame() { ++frame_; }
   double time() const { return time_; }
   int frame() const { return frame_; }
@@ -74,6 +79,7 @@ class ShaderClock {
   double time_ = 0.0;
   int frame_ = 0;
   bool paused_ = false;
+  double speed_ = 1.0;
 };
 
 // iDate for a wall-clock instant, in local time.

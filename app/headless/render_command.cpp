@@ -135,7 +135,7 @@ int render_command(const RenderRequest& req) {
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
     Image image = graph.render_frame(project, in, req.size);
     const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
-    if (!write_image(out, image, frame_metadata(req.scene, in), Overwrite::Replace, &error)) return fail(error, kExitUsage);
+    if (!write_image(out, image, frame_metadata(req.scene, req.source, in), Overwrite::Replace, &error)) return fail(error, kExitUsage);
     if (sequence || warm_up) show_progress(total - count + i + 1, total);
   }
   return kExitOk;

@@ -10,6 +10,7 @@
 #include <ctime>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <utility>
 
 #include "core/capture.h"
@@ -20,8 +21,12 @@
 #include "core/gl_debug.h"
 #include "core/views.h"
 #include "core/renderer.h"
+#include "core/knobs.h"
 #include "core/scene.h"
+#include "window/kept_picture.h"
 #include "window/key_codes.h"
+#include "window/panels.h"
+#include "window/ui.h"
 
 namespace rm {
 
@@ -33,6 +38,8 @@ const char* window_keys_help() {
          "  Left/Right   step time by 1/60 s (while paused)\n"
          "  F11          toggle fullscreen\n"
          "  V            cycle views: picture, steps, normals, depth, nan\n"
+         "  F2           hide / show the interface (errors, HUD, controls)\n"
+         "  F3           HUD: frame times on the CPU and GPU, fps, iTime, passes\n"
          "  Esc, Q       quit\n"
          "  F1           print these keys\n"
          "  A project that reads the keyboard (#pragma channelN keyboard) gets every\n"
@@ -64,9 +71,11 @@ std::string timestamp_now() {
 class WindowApp {
  public:
   WindowApp(const WindowOptions& options, GLFWwindow* window)
-      : options_(options), window_(window), project_(project_files(options.scene, options.media), options.source, options.channels),
-        watcher_(make_watcher(options.watch)), graph_(renderer_) {
+      : options_(options), window_(window), source_(options.source),
+        project_(project_files(options.scene, options.media), options.source, options.channels),
+        watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
+    model_.values = &inputs_.uniforms;
   }
 
   int run() {
@@ -82,26 +91,42 @@ class WindowApp {
     while (!glfwWindowShouldClose(window_) && !quit_) {
       // A picture that cannot change is drawn once: then sleep until an event,
       // waking every 20 ms to look at the watcher (a save shows up that fast).
-      if (redraw_needed()) glfwPollEvents();
+      if (redraw_needed() || ui_frames_ > 0) glfwPollEvents();
       else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
-      if (redraw_needed()) frame();
+      if (redraw_needed() || ui_frames_ > 0) frame(redraw_needed());
     }
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
   }
 
-  void on_mouse_button(int button, int action) {
+  // A press over a panel is the interface's, and so is its drag: iMouse
+  // follows only presses on the picture.
+  void on_mouse_button(int button, int action, int mods) {
+    ui_.on_mouse_button(button, action, mods);
+    ui_event();
     if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    if (action == GLFW_PRESS && ui_.covers(cursor_window())) {
+      ui_holds_mouse_ = true;
+      return;
+    }
+    if (action == GLFW_RELEASE && std::exchange(ui_holds_mouse_, false)) return;
     if (action == GLFW_PRESS) mouse_.press(cursor_pixels());
     else if (action == GLFW_RELEASE) mouse_.release();
     if (use_.drag) dirty_ = true;
   }
   void on_cursor(double x, double y) {
     cursor_ = {x, y};
+    ui_event();
+    if (ui_holds_mouse_) return;
     mouse_.move(cursor_pixels());
     if (use_.pointer || (use_.drag && mouse_.imouse().z > 0.0f)) dirty_ = true;
   }
+  // Events the interface alone reads.
+  void on_char(unsigned int codepoint) { ui_.on_char(codepoint); ui_event(); }
+  void on_scroll(double x, double y) { ui_.on_scroll(x, y); ui_event(); }
+  void on_cursor_enter(bool entered) { ui_.on_cursor_enter(entered); ui_event(); }
+  void on_focus(bool focused) { ui_.on_focus(focused); ui_event(); }
   // Uncovered windows: draw again.
   void on_refresh() { dirty_ = true; }
   // Nothing is drawn while minimised, animated or not.
@@ -115,7 +140,7 @@ class WindowApp {
     dirty_ = true;
     if (options_.verbose) std::cerr << "raymarching: framebuffer " << width << "x" << height << '\n';
   }
-  void on_key(int key, int action, int mods);
+  void on_key(int key, int scancode, int action, int mods);
 
  private:
   // The cursor in framebuffer pixels, origin at the bottom left (GL's), where
@@ -130,30 +155,37 @@ class WindowApp {
     const double sx = w > 0 ? double(fw) / w : 1.0, sy = h > 0 ? double(fh) / h : 1.0;
     return {static_cast<float>(x * sx), static_cast<float>(fh - y * sy)};
   }
+  glm::vec2 cursor_window() const { return {static_cast<float>(cursor_.first), static_cast<float>(cursor_.second)}; }
+
+  // The interface is immediate-mode: after an event it is drawn a few times
+  // (a hover shows a frame after the move), over the kept picture.
+  void ui_event() {
+    if (ui_.visible()) ui_frames_ = 3;
+  }
 
   void load() {
     const ReloadStatus status = project_.reload();
     watcher_->watch(project_.watch_list());
     std::string channel_error;
     if (status == ReloadStatus::Unchanged) {  // a channel image may have changed
-      if (project_.ready() && !graph_.update(project_, &channel_error))
-        std::cerr << "raymarching: error: " << channel_error << '\n';
+      if (project_.ready() && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
       if (graph_.images_changed()) dirty_ = true;
       return;
     }
     const Diagnostics& diags = project_.diagnostics();
     if (!diags.empty()) std::cerr << join(diags);
     errors_ = count_errors(diags);
+    model_.errors.clear();
+    model_.warnings.clear();
+    for (const Diagnostic& d : diags) (d.severity == Severity::Error ? model_.errors : model_.warnings).push_back(d);
     if (project_.ready()) use_ = project_.inputs_read();
-    if (status == ReloadStatus::Swapped) {  // the shader's own uniforms, at their declared defaults
-      const UserUniforms uniforms = project_.user_uniforms();
-      if (!uniforms.warnings.empty()) std::cerr << join(uniforms.warnings);
-      std::string no_error;
-      inputs_.uniforms = uniform_values(uniforms, {}, &no_error).value_or(std::vector<UniformValue>{});
+    if (status == ReloadStatus::Swapped) {
+      take_user_uniforms();
+      take_knobs();
     }
     dirty_ = true;  // a new program, or the stale badge and title
-    if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error))
-      std::cerr << "raymarching: error: " << channel_error << '\n';
+    ui_event();
+    if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
     if (options_.verbose) {
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
                 << project_.generation();
@@ -168,14 +200,133 @@ class WindowApp {
     update_title(true);
   }
 
-  void frame() {
+  void channel_failed(const std::string& error) {
+    std::cerr << "raymarching: error: " << error << '\n';
+    model_.errors.push_back({Severity::Error, "", 0, 0, error});
+    ui_event();
+  }
+
+  // The shader's own uniforms at their declared defaults, but those the
+  // person set in the panel keep their values across reloads, by name.
+  void take_user_uniforms() {
+    UserUniforms uniforms = project_.user_uniforms();
+    if (!uniforms.warnings.empty()) std::cerr << join(uniforms.warnings);
+    model_.warnings.insert(model_.warnings.end(), uniforms.warnings.begin(), uniforms.warnings.end());
+    std::string no_error;
+    std::vector<UniformValue> values = uniform_values(uniforms, {}, &no_error).value_or(std::vector<UniformValue>{});
+    for (UniformValue& v : values) {
+      auto old = std::find_if(inputs_.uniforms.begin(), inputs_.uniforms.end(),
+                              [&](const UniformValue& o) { return o.name == v.name; });
+      if (old == inputs_.uniforms.end() || !touched_uniforms_.count(v.name)) continue;
+      std::string error;
+      if (auto kept = parse_uniform_value(*uniforms.find(v.name), old->text, &error)) {
+        v.value = *kept;
+        v.text = old->text;
+      }
+    }
+    inputs_.uniforms = std::move(values);
+    model_.uniforms = std::move(uniforms);
+  }
+
+  // shaderlib's knobs this scene uses, as its preprocessor sees them now.
+  void take_knobs() {
+    model_.knobs.clear();
+    model_.preset.clear();
+    for (const Define& d : source_.defines)
+      for (const char* preset : quality_presets())
+        if (d.name == "RM_QUALITY" && d.value == preset_macro(preset)) model_.preset = preset;
+    for (const KnobValue& k : knob_values(project_.image_source())) {
+      KnobControl control{k, false, 0.0f};
+      for (const Define& d : source_.defines) control.overridden |= d.name == k.knob->name;
+      control.edit = static_cast<float>(std::atof(k.value.c_str()));
+      model_.knobs.push_back(control);
+    }
+  }
+
+  // -D NAME=VALUE for every pass from now on (VALUE "": the scene's own), and a rebuild.
+  void set_define(const std::string& name, const std::string& value) {
+    source_.defines = with_define(source_.defines, name, value);
+    project_.set_options(source_, with_view(source_, view_));
+    load();
+    if (options_.verbose) std::cerr << "raymarching: -D " << name << "=" << (value.empty() ? "(the scene's)" : value) << '\n';
+  }
+
+  void apply(const UiChanges& c) {
+    if (c.uniforms) {
+      for (const UniformValue& v : inputs_.uniforms) touched_uniforms_.insert(v.name);
+      dirty_ = true;
+    }
+    if (c.toggle_pause) clock_.set_paused(!clock_.paused());
+    if (c.restart) restart();
+    if (c.step != 0) {
+      clock_.set_paused(true);
+      clock_.step(c.step / 60.0);
+    }
+    if (c.seek) clock_.seek(*c.seek);
+    if (c.speed) clock_.set_speed(*c.speed);
+    if (c.toggle_pause || c.restart || c.step || c.seek || c.speed) {
+      dirty_ = true;
+      update_title(true);
+    }
+    if (c.dismiss_warnings) model_.warnings.clear();
+    if (c.knob) set_define(c.knob->first, c.knob->second);
+    if (c.preset) set_define("RM_QUALITY", c.preset->empty() ? "" : preset_macro(*c.preset));
+  }
+
+  void restart() {
+    clock_.restart();
+    graph_.restart();
+    dirty_ = true;
+  }
+
+  // One iteration's picture: the scene drawn again when `redraw` (into the
+  // kept picture), then the kept picture, the stale badge and the interface.
+  void frame(bool redraw) {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
     if (width <= 0 || height <= 0) {  // minimised: nothing to draw into
       glfwWaitEventsTimeout(0.05);
       clock_.tick();
+      ui_frames_ = 0;
       return;
     }
+    if (redraw || !picture_.has_picture()) draw_picture(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_SCISSOR_TEST);
+    glViewport(0, 0, width, height);
+    if (picture_.has_picture()) {
+      picture_.present();
+    } else {
+      glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+    }
+    if (errors_ > 0) draw_stale_badge(width, height);
+    draw_interface();
+    if (shot_requested_) {  // before the swap, with this frame's inputs
+      shot_requested_ = false;
+      screenshot();
+    }
+    glfwSwapBuffers(window_);
+    ui_frames_ = std::max(0, ui_frames_ - 1);
+    if (options_.verbose && presented_generation_ != project_.generation()) {
+      presented_generation_ = project_.generation();
+      std::cerr << "raymarching: presented generation " << presented_generation_ << " at " << steady_ns() << '\n';
+    }
+    update_title(false);
+  }
+
+  void draw_interface() {
+    if (!ui_.visible()) return;
+    model_.time = clock_.time();
+    model_.paused = clock_.paused();
+    model_.speed = clock_.speed();
+    ui_.begin();
+    const UiChanges changes = draw_panels(ui_, model_);
+    ui_.end();
+    apply(changes);
+  }
+
+  void draw_picture(int width, int height) {
     const float delta = clock_.tick();
     inputs_.resolution = glm::vec3(width, height, 1.0f);
     inputs_.time = static_cast<float>(clock_.time());
@@ -186,33 +337,43 @@ class WindowApp {
     inputs_.cursor = mouse_.cursor();
     inputs_.date = date_of(std::chrono::system_clock::now());
 
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDisable(GL_SCISSOR_TEST);
-    if (project_.ready()) {
-      graph_.draw(project_, inputs_, {width, height});
-    } else {
-      glViewport(0, 0, width, height);
-      glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT);
-    }
-    if (errors_ > 0) draw_stale_badge(width, height);
-    if (shot_requested_) {  // before the swap, with this frame's inputs
-      shot_requested_ = false;
-      screenshot();
-    }
-    glfwSwapBuffers(window_);
+    if (!project_.ready()) return;  // the grey until a first good load
+    // With the HUD or the knobs shown, every pass is timed on the GPU, and on
+    // the CPU's clock through glFinish (llvmpipe's GPU figure misses its threads).
+    const bool timed = ui_.visible() && (model_.hud || !model_.knobs.empty());
+    graph_.time_passes(timed, true);
+    const GLuint target = picture_.target({width, height});
+    graph_.draw(project_, inputs_, {width, height}, target);
+    picture_.mark_drawn();
+    if (timed) take_figures(width, height);
     ++frames_drawn_;
-    if (options_.verbose && presented_generation_ != project_.generation()) {
-      presented_generation_ = project_.generation();
-      std::cerr << "raymarching: presented generation " << presented_generation_ << " at " << steady_ns() << '\n';
-    }
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
     dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
     mouse_.end_frame();
     graph_.keyboard().end_frame();
     if (!clock_.paused()) clock_.next_frame();
     if (delta < 0.25f) frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;  // not across idle waits
-    update_title(false);
+  }
+
+  void take_figures(int width, int height) {
+    HudFigures& f = model_.figures;
+    f.cpu_ms = f.gpu_ms = 0;
+    f.passes.clear();
+    for (const FrameGraph::PassTime& t : graph_.pass_times()) {
+      f.cpu_ms += t.wall_ms;
+      f.gpu_ms += t.gpu_ms;
+      f.passes.emplace_back(t.pass.filename().string(), t.gpu_ms);
+    }
+    const auto now = std::chrono::steady_clock::now();
+    presents_.push_back(now);
+    while (presents_.size() > 1 && now - presents_.front() > std::chrono::seconds(1)) presents_.erase(presents_.begin());
+    const double span = std::chrono::duration<double>(now - presents_.front()).count();
+    f.fps = span > 0 ? (presents_.size() - 1) / span : 0.0;
+    f.resolution = {width, height};
+    f.time = inputs_.time;
+    f.frame = inputs_.frame;
+    f.paused = clock_.paused();
+    f.animated = use_.time;
   }
 
   // A red frame around the kept picture: the shader on screen is stale.
@@ -267,7 +428,8 @@ class WindowApp {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const std::string name = options_.scene.stem().string() + "-" + timestamp_now() + "." + options_.shot_format;
     std::string error;
-    auto written = write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, in), Overwrite::Never, &error);
+    auto written =
+        write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, source_, in), Overwrite::Never, &error);
     if (written) std::cout << "screenshot: " << written->string() << std::endl;
     else std::cerr << "raymarching: error: screenshot: " << error << '\n';
   }
@@ -278,7 +440,7 @@ class WindowApp {
     View next = next_view(view_);
     while (next != View::Picture && view_problem(project_.image_source(), next)) next = next_view(next);
     view_ = next;
-    project_.set_options(options_.source, with_view(options_.source, view_));
+    project_.set_options(source_, with_view(source_, view_));
     load();
     if (options_.verbose) std::cerr << "raymarching: view " << to_string(view_) << '\n';
   }
@@ -296,7 +458,7 @@ class WindowApp {
     glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
   }
 
-  // Draw this iteration? Always while the shader reads a running clock;
+  // Draw the scene this iteration? Always while the shader reads a running clock;
   // otherwise only after something it reads changed (or a screenshot is due).
   // Never while minimised: nobody sees it.
   bool redraw_needed() const {
@@ -305,10 +467,18 @@ class WindowApp {
 
   const WindowOptions& options_;
   GLFWwindow* window_;
+  SourceOptions source_;  // the command line's, with the knobs and preset set in the panel
   Project project_;
   std::unique_ptr<Watcher> watcher_;
   Renderer renderer_;
   FrameGraph graph_;
+  KeptPicture picture_;
+  Ui ui_;
+  UiModel model_;
+  int ui_frames_ = 0;            // presents still due to the interface
+  bool ui_holds_mouse_ = false;  // the left button went down over a panel
+  std::set<std::string> touched_uniforms_;  // set in the panel: they keep their values across reloads
+  std::vector<std::chrono::steady_clock::time_point> presents_;  // of the last second, for fps
   MouseState mouse_;
   std::pair<double, double> cursor_;  // window coordinates, from the last cursor event
   ShaderClock clock_;
@@ -327,7 +497,10 @@ class WindowApp {
   int windowed_[4] = {0, 0, 800, 450};
 };
 
-void WindowApp::on_key(int key, int action, int) {
+void WindowApp::on_key(int key, int scancode, int action, int mods) {
+  ui_.on_key(key, scancode, action, mods);
+  ui_event();
+  if (ui_.wants_keyboard()) return;  // typing into a field of the panel
   // A project that reads the keyboard gets every key but F1-F12 and Esc.
   const bool host_key = (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F25) || key == GLFW_KEY_ESCAPE;
   if (project_.reads_keyboard()) {
@@ -342,19 +515,21 @@ void WindowApp::on_key(int key, int action, int) {
   switch (key) {
     case GLFW_KEY_F12: if (press) shot_requested_ = true; break;
     case GLFW_KEY_SPACE: if (press) clock_.set_paused(!clock_.paused()); update_title(true); break;
-    case GLFW_KEY_R:
-      if (press) {
-        clock_.restart();
-        graph_.restart();
-      }
-      dirty_ = true;
-      break;
+    case GLFW_KEY_R: if (press) restart(); break;
     case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;
     case GLFW_KEY_V: if (press) cycle_view(); break;
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: if (press) quit_ = true; break;
     case GLFW_KEY_F1: if (press) std::cout << window_keys_help() << std::flush; break;
+    case GLFW_KEY_F2: if (press) ui_.set_visible(!ui_.visible()); ui_frames_ = 1; break;
+    case GLFW_KEY_F3:
+      if (press) {
+        model_.hud = !model_.hud || !ui_.visible();
+        ui_.set_visible(true);
+        dirty_ = true;  // the figures come from a timed frame
+      }
+      break;
     default: break;
   }
 }
@@ -386,9 +561,13 @@ int run_window(const WindowOptions& options) {
   {
     WindowApp app(options, window);
     glfwSetWindowUserPointer(window, &app);
-    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) { app_of(w)->on_mouse_button(button, action); });
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) { app_of(w)->on_mouse_button(button, action, mods); });
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { app_of(w)->on_cursor(x, y); });
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) { app_of(w)->on_key(key, action, mods); });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int scancode, int action, int mods) { app_of(w)->on_key(key, scancode, action, mods); });
+    glfwSetCharCallback(window, [](GLFWwindow* w, unsigned int c) { app_of(w)->on_char(c); });
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double x, double y) { app_of(w)->on_scroll(x, y); });
+    glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int entered) { app_of(w)->on_cursor_enter(entered != 0); });
+    glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int focused) { app_of(w)->on_focus(focused != 0); });
     glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { app_of(w)->on_refresh(); });
     glfwSetWindowIconifyCallback(window, [](GLFWwindow* w, int iconified) { app_of(w)->on_iconify(iconified); });
     glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int width, int height) { app_of(w)->on_resize(width, height); });

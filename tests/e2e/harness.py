@@ -104,3 +104,29 @@ def open_window(args, stdout_path, stderr_path, cwd):
             return proc
         time.sleep(0.5)
     return proc
+
+
+def capture_screen(window, ppm_path):
+    """What the X server shows of `window` (not an F12 shot): xwd reads it,
+    and its ZPixmap is written as a binary PPM that OpenImageIO reads."""
+    import struct
+    data = subprocess.run(["xwd", "-silent", "-id", str(window)], capture_output=True).stdout
+    if len(data) < 100:
+        return None
+    fields = struct.unpack(">25I", data[:100])
+    header_size, width, height = fields[0], fields[4], fields[5]
+    byte_order, bits_per_pixel, bytes_per_line = fields[7], fields[11], fields[12]
+    masks, ncolors = fields[14:17], fields[19]
+    if bits_per_pixel != 32:
+        return None
+    start = header_size + 12 * ncolors
+    shifts = [(m & -m).bit_length() - 1 for m in masks]
+    order = "<" if byte_order == 0 else ">"
+    rgb = bytearray()
+    for y in range(height):
+        row = data[start + y * bytes_per_line:start + y * bytes_per_line + 4 * width]
+        for (p,) in struct.iter_unpack(order + "I", row):
+            rgb += bytes((p & m) >> s for m, s in zip(masks, shifts))
+    with open(ppm_path, "wb") as f:
+        f.write(b"P6\n%d %d\n255\n" % (width, height) + bytes(rgb))
+    return ppm_path

@@ -72,8 +72,11 @@ TEST(Capture, MetadataRoundTrips) {
   in.time = 1.25f;
   in.frame = 7;
   in.mouse = {1, 2, -3, -4};
+  SourceOptions source;
+  source.include_dirs = {"lib"};
+  source.defines = {{"RM_MAX_STEPS", "64"}, {"FAST", ""}};
   for (const char* name : {"m.png", "m.exr"}) {
-    ASSERT_TRUE(write_image(dir / name, gradient(), frame_metadata("scene.frag", in), Overwrite::Replace, &error));
+    ASSERT_TRUE(write_image(dir / name, gradient(), frame_metadata("scene.frag", source, in), Overwrite::Replace, &error));
     Metadata meta = read_metadata(dir / name);
     auto get = [&](const std::string& key) {
       for (auto& [k, v] : meta)
@@ -83,7 +86,11 @@ TEST(Capture, MetadataRoundTrips) {
     EXPECT_EQ(get("raymarching:iTime"), "1.25") << name;
     EXPECT_EQ(get("raymarching:iFrame"), "7") << name;
     EXPECT_EQ(get("raymarching:iMouse"), "1,2,-3,-4") << name;
-    EXPECT_NE(get("ImageDescription").find("raymarching render scene.frag --size 4x2 --time 1.25 --frame 7"), std::string::npos);
+    EXPECT_EQ(get("raymarching:define:RM_MAX_STEPS"), "64") << name;
+    EXPECT_EQ(get("raymarching:define:FAST"), "1") << name;
+    EXPECT_NE(get("ImageDescription")
+                  .find("raymarching render scene.frag -I lib -D RM_MAX_STEPS=64 -D FAST=1 --size 4x2 --time 1.25 --frame 7"),
+              std::string::npos);
   }
 }
 

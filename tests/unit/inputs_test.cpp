@@ -54,6 +54,23 @@ TEST(Clock, PausesStepsAndRestarts) {
   EXPECT_EQ(clock.frame(), 0);
 }
 
+TEST(Clock, RunsAtItsSpeedAndSeeks) {
+  using namespace std::chrono_literals;
+  const auto t0 = ShaderClock::Clock::time_point{};
+  ShaderClock clock(t0);
+  clock.set_speed(2.0);
+  EXPECT_FLOAT_EQ(clock.tick(t0 + 500ms), 1.0f);  // iTimeDelta is shader time too
+  EXPECT_DOUBLE_EQ(clock.time(), 1.0);
+  clock.set_speed(0.01);
+  EXPECT_DOUBLE_EQ(clock.speed(), ShaderClock::kMinSpeed);
+  clock.set_speed(10.0);
+  EXPECT_DOUBLE_EQ(clock.speed(), ShaderClock::kMaxSpeed);
+  clock.seek(7.25);
+  EXPECT_DOUBLE_EQ(clock.time(), 7.25);
+  clock.seek(-1.0);
+  EXPECT_DOUBLE_EQ(clock.time(), 0.0);
+}
+
 TEST(Date, IsYearMonthFromZeroDaySecondsSinceMidnight) {
   std::tm tm{};
   tm.tm_year = 2024 - 1900;

@@ -1,0 +1,72 @@
+#include "core/knobs.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "core/check.h"
+
+namespace rm {
+
+const std::vector<Knob>& knob_table() {
+  static const std::vector<Knob> table = {
+      {"RM_HIT_PIXELS", "hit threshold, in half pixels", false, 0.0f, 16.0f, false},
+      {"RM_HIT_EPSILON", "smallest hit threshold", false, 1e-7f, 1e-1f, true},
+      {"RM_MAX_STEPS", "most map() calls per ray", true, 8.0f, 2000.0f, true},
+      {"RM_MAX_DISTANCE", "farthest distance along a ray", false, 1.0f, 1000.0f, true},
+      {"RM_OMEGA", "over-relaxation (1: plain)", false, 1.0f, 2.0f, false},
+      {"RM_NORMAL_TAPS", "normal taps: 4 or 6", true, 4.0f, 6.0f, false},
+      {"RM_NORMAL_EPSILON", "smallest normal step", false, 1e-7f, 1e-1f, true},
+      {"RM_SHADOW_STEPS", "most map() calls per shadow ray", true, 1.0f, 512.0f, true},
+      {"RM_SHADOW_SHARPNESS", "soft shadow k: larger is sharper", false, 1.0f, 128.0f, true},
+      {"RM_AO_SAMPLES", "ambient occlusion samples", true, 0.0f, 32.0f, false},
+      {"RM_REFLECTIONS", "mirror bounces", true, 0.0f, 8.0f, false},
+      {"RM_REFRACTION", "refraction segments", true, 0.0f, 16.0f, false},
+      {"RM_SAMPLES", "supersampling, N x N rays", true, 1.0f, 8.0f, false},
+  };
+  return table;
+}
+
+const std::vector<const char*>& quality_presets() {
+  static const std::vector<const char*> presets = {"draft", "interactive", "final", "reference"};
+  return presets;
+}
+
+std::string preset_macro(const std::string& preset) {
+  std::string name = "RM_" + preset;
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+  return name;
+}
+
+std::vector<KnobValue> knob_values(const Source& source) {
+  std::vector<KnobValue> out;
+  if (source.text.find("RM_QUALITY_GLSL") == std::string::npos) return out;  // no shaderlib module with knobs
+  // One probe line per knob after the scene's last line: "rm_knob_probe_3 RM_MAX_STEPS ;"
+  // comes out of the preprocessor as "rm_knob_probe_3 160;", or unchanged where undefined.
+  const auto& table = knob_table();
+  std::string text = source.text + "\n";
+  for (size_t i = 0; i < table.size(); ++i) text += "rm_knob_probe_" + std::to_string(i) + " " + table[i].name + " ;\n";
+  const auto active = active_code(text);
+  if (!active) return out;
+  for (size_t i = 0; i < table.size(); ++i) {
+    const std::string marker = "rm_knob_probe_" + std::to_string(i) + " ";
+    const size_t at = active->rfind(marker);
+    if (at == std::string::npos) continue;
+    const size_t begin = at + marker.size();
+    const size_t end = active->find(';', begin);
+    if (end == std::string::npos) continue;
+    std::string value = active->substr(begin, end - begin);
+    while (!value.empty() && value.back() == ' ') value.pop_back();
+    if (value == table[i].name) continue;  // not defined: the scene does not use it
+    out.push_back({&table[i], value});
+  }
+  return out;
+}
+
+std::vector<Define> with_define(std::vector<Define> defines, const std::string& name, const std::string& value) {
+  defines.erase(std::remove_if(defines.begin(), defines.end(), [&](const Define& d) { return d.name == name; }),
+                defines.end());
+  if (!value.empty()) defines.push_back({name, value});
+  return defines;
+}
+
+}  // namespace rm

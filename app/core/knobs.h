@@ -1,0 +1,41 @@
+// shaderlib's accuracy knobs: the RM_* macros that rm/quality.glsl's presets
+// set and the modules read (docs/accuracy.md measures each). Which of them a
+// scene uses, at what value, and the range a control gives each.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/source.h"
+
+namespace rm {
+
+struct Knob {
+  const char* name;  // RM_MAX_STEPS
+  const char* what;  // what it sets, in a few words
+  bool integer;
+  float min, max;    // the control's range; -D may go past it
+  bool logarithmic;  // thresholds span decades
+};
+
+// Every knob, in the order the panel lists them.
+const std::vector<Knob>& knob_table();
+
+// The presets of --quality, as RM_QUALITY's values: "draft" -> "RM_DRAFT".
+const std::vector<const char*>& quality_presets();
+std::string preset_macro(const std::string& preset);
+
+struct KnobValue {
+  const Knob* knob;
+  std::string value;  // as the compiler sees it: "160", "1e-4", "( 100.0 * 0.5 )"
+};
+
+// The knobs `source` uses (those its code defines), with the values its
+// preprocessor gives them after the scene's own #defines, the -D and the
+// preset. Empty for a scene without shaderlib: the preprocessor is then not run.
+std::vector<KnobValue> knob_values(const Source& source);
+
+// `defines` with NAME set to VALUE: an existing -D of NAME is replaced, and
+// an empty VALUE removes it.
+std::vector<Define> with_define(std::vector<Define> defines, const std::string& name, const std::string& value);
+
+}  // namespace rm

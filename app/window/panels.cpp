@@ -1,0 +1,224 @@
+#include "window/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "window/ui.h"
+
+namespace rm {
+namespace {
+
+constexpr float kMargin = 10.0f;
+constexpr float kPanelWidth = 330.0f;
+const ImVec4 kErrorColour{1.0f, 0.45f, 0.4f, 1.0f};
+const ImVec4 kWarningColour{1.0f, 0.8f, 0.35f, 1.0f};
+constexpr ImGuiWindowFlags kFixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+
+std::optional<double> number(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::string knob_text(const Knob& knob, float value) {
+  char buf[32];
+  if (knob.integer) std::snprintf(buf, sizeof buf, "%d", static_cast<int>(std::lround(value)));
+  else std::snprintf(buf, sizeof buf, "%g", value);
+  std::string text = buf;
+  // A float knob stays a float literal in GLSL ("2" would make an int).
+  if (!knob.integer && text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+// The diagnostics of a failed save over the bottom of the kept picture, and
+// the warnings of the latest load below them, smaller and dismissible.
+void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
+  if (model.errors.empty() && model.warnings.empty()) return;
+  const ImVec2 screen = ImGui::GetIO().DisplaySize;
+  const float width = std::max(1.0f, screen.x - 2 * kMargin);
+  ImGui::SetNextWindowPos(ImVec2(kMargin, screen.y - kMargin), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, std::max(40.0f, screen.y * 0.45f)));
+  ImGui::SetNextWindowBgAlpha(0.8f);
+  ImGui::Begin("##diagnostics", nullptr,
+               kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize);
+  ui.note_window_rect();
+  ImGui::PushTextWrapPos(0.0f);
+  const int errors = count_errors(model.errors);
+  if (errors > 0) {
+    ImGui::TextColored(kErrorColour, "%d %s; showing the last good picture", errors, errors == 1 ? "error" : "errors");
+    for (const Diagnostic& d : model.errors)
+      if (d.severity == Severity::Error) ImGui::TextColored(kErrorColour, "%s", d.str().c_str());
+  }
+  if (!model.warnings.empty()) {
+    ImGui::SetWindowFontScale(0.85f);
+    if (ImGui::SmallButton("dismiss")) changes->dismiss_warnings = true;
+    ImGui::SameLine();
+    ImGui::TextColored(kWarningColour, "%zu %s", model.warnings.size(),
+                       model.warnings.size() == 1 ? "warning" : "warnings");
+    for (const Diagnostic& d : model.warnings) ImGui::TextColored(kWarningColour, "%s", d.str().c_str());
+    ImGui::SetWindowFontScale(1.0f);
+  }
+  ImGui::PopTextWrapPos();
+  ImGui::End();
+}
+
+void hud(const UiModel& model) {
+  if (!model.hud) return;
+  const HudFigures& f = model.figures;
+  ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(340.0f, 0.0f), ImVec2(FLT_MAX, FLT_MAX));  // numbers change width
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  // NoInputs: the HUD never takes a press from iMouse.
+  ImGui::Begin("##hud", nullptr,
+               kFixed | ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs);
+  ImGui::Text("CPU %.2f ms   GPU %.2f ms   %.1f fps", f.cpu_ms, f.gpu_ms, f.fps);
+  ImGui::Text("%d x %d   iTime %.2f   iFrame %d   %s", f.resolution.x, f.resolution.y, f.time, f.frame,
+              !f.animated ? "static" : f.paused ? "paused" : "running");
+  if (f.passes.size() > 1)
+    for (const auto& [name, ms] : f.passes) ImGui::Text("  %-20s %6.2f ms", name.c_str(), ms);
+  ImGui::End();
+}
+
+void time_controls(const UiModel& model, UiChanges* changes) {
+  if (!ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (ImGui::Button(model.paused ? "Play" : "Pause")) changes->toggle_pause = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Restart")) changes->restart = true;
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##back", ImGuiDir_Left)) changes->step = -1;
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) changes->step = 1;
+  // The scrub range grows in steps of 10 s as time runs on.
+  const float end = static_cast<float>(std::max(10.0, std::ceil((model.time + 1.0) / 10.0) * 10.0));
+  float t = static_cast<float>(model.time);
+  if (ImGui::SliderFloat("iTime", &t, 0.0f, end, "%.2f s")) changes->seek = t;
+  float speed = static_cast<float>(model.speed);
+  if (ImGui::SliderFloat("speed", &speed, static_cast<float>(ShaderClock::kMinSpeed),
+                         static_cast<float>(ShaderClock::kMaxSpeed), "%.2fx", ImGuiSliderFlags_Logarithmic))
+    changes->speed = speed;
+}
+
+bool uniform_control(const UserUniform& u, UniformValue& v) {
+  float f[4] = {0, 0, 0, 0};
+  std::copy_n(v.value.begin(), std::min<size_t>(4, v.value.size()), f);
+  const char* name = u.name.c_str();
+  const float speed = u.step > 0 ? u.step : (u.max - u.min) / 200.0f;
+  bool changed = false;
+  switch (u.type) {
+    case UserUniform::Type::Float:
+      changed = ImGui::SliderFloat(name, f, u.min, u.max, "%.3f");
+      if (changed && u.step > 0) f[0] = u.min + std::round((f[0] - u.min) / u.step) * u.step;
+      break;
+    case UserUniform::Type::Int: {
+      int i = static_cast<int>(std::lround(f[0]));
+      changed = ImGui::SliderInt(name, &i, static_cast<int>(u.min), static_cast<int>(u.max));
+      f[0] = static_cast<float>(i);
+      break;
+    }
+    case UserUniform::Type::Bool: {
+      bool b = f[0] != 0.0f;
+      changed = ImGui::Checkbox(name, &b);
+      f[0] = b ? 1.0f : 0.0f;
+      break;
+    }
+    case UserUniform::Type::Vec2: changed = ImGui::DragFloat2(name, f, speed, u.min, u.max); break;
+    case UserUniform::Type::Vec3:
+      changed = u.color ? ImGui::ColorEdit3(name, f) : ImGui::DragFloat3(name, f, speed, u.min, u.max);
+      break;
+    case UserUniform::Type::Vec4:
+      changed = u.color ? ImGui::ColorEdit4(name, f) : ImGui::DragFloat4(name, f, speed, u.min, u.max);
+      break;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s:%d", u.path.c_str(), u.line);
+  if (!changed) return false;
+  v.value.assign(f, f + u.components);
+  v.text = uniform_value_text(u.type, v.value);
+  return true;
+}
+
+void uniform_controls(UiModel& model, UiChanges* changes) {
+  if (model.uniforms.uniforms.empty() || !model.values) return;
+  if (!ImGui::CollapsingHeader("Uniforms", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  for (const UserUniform& u : model.uniforms.uniforms) {
+    auto v = std::find_if(model.values->begin(), model.values->end(),
+                          [&](const UniformValue& value) { return value.name == u.name; });
+    if (v != model.values->end() && uniform_control(u, *v)) changes->uniforms = true;
+  }
+}
+
+// shaderlib's knobs: each change is a new -D and a recompile, made when the
+// slider is let go; the frame time beside them shows what it cost.
+void knob_controls(UiModel& model, UiChanges* changes) {
+  if (model.knobs.empty()) return;
+  if (!ImGui::CollapsingHeader("Accuracy knobs", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::Text("frame: CPU %.2f ms, GPU %.2f ms", model.figures.cpu_ms, model.figures.gpu_ms);
+  const auto& presets = quality_presets();
+  int chosen = 0;
+  std::vector<const char*> items = {"scene's own"};
+  for (size_t i = 0; i < presets.size(); ++i) {
+    items.push_back(presets[i]);
+    if (model.preset == presets[i]) chosen = static_cast<int>(i + 1);
+  }
+  if (ImGui::Combo("preset", &chosen, items.data(), static_cast<int>(items.size())))
+    changes->preset = chosen == 0 ? "" : presets[static_cast<size_t>(chosen - 1)];
+  for (KnobControl& k : model.knobs) {
+    const Knob& knob = *k.value.knob;
+    ImGui::PushID(knob.name);
+    if (!number(k.value.value)) {
+      ImGui::Text("%s = %s", knob.name, k.value.value.c_str());
+    } else {
+      const ImGuiSliderFlags flags = knob.logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
+      if (knob.integer) {
+        int i = static_cast<int>(std::lround(k.edit));
+        ImGui::SliderInt(knob.name, &i, static_cast<int>(knob.min), static_cast<int>(knob.max), "%d", flags);
+        k.edit = static_cast<float>(i);
+      } else {
+        ImGui::SliderFloat(knob.name, &k.edit, knob.min, knob.max, "%g", flags);
+      }
+      if (ImGui::IsItemDeactivatedAfterEdit()) changes->knob = {{knob.name, knob_text(knob, k.edit)}};
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", knob.what);
+    if (k.overridden) {
+      ImGui::SameLine();
+      if (ImGui::SmallButton("reset")) changes->knob = {{knob.name, ""}};
+    }
+    ImGui::PopID();
+  }
+}
+
+void controls(Ui& ui, UiModel& model, UiChanges* changes) {
+  const ImVec2 screen = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(screen.x - kMargin, kMargin), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth, 0.0f),
+                                      ImVec2(kPanelWidth, std::max(60.0f, screen.y - 2 * kMargin)));
+  ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);  // a title bar until opened
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (ImGui::Begin("Controls", nullptr, kFixed | ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushItemWidth(-150.0f);
+    time_controls(model, changes);
+    uniform_controls(model, changes);
+    knob_controls(model, changes);
+    ImGui::PopItemWidth();
+  }
+  ui.note_window_rect();
+  ImGui::End();
+}
+
+}  // namespace
+
+UiChanges draw_panels(Ui& ui, UiModel& model) {
+  UiChanges changes;
+  hud(model);
+  controls(ui, model, &changes);
+  error_overlay(ui, model, &changes);
+  return changes;
+}
+
+}  // namespace rm

@@ -1,0 +1,67 @@
+// The window's panels, built with Dear ImGui each frame from a UiModel: the
+// error overlay, the HUD, and the controls (time, the shader's own uniforms,
+// shaderlib's accuracy knobs). What the person changed comes back as
+// UiChanges; the window applies them. The panels know nothing of GLFW, the
+// project or the graph.
+#pragma once
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/diagnostics.h"
+#include "core/inputs.h"
+#include "core/knobs.h"
+#include "core/user_uniforms.h"
+
+namespace rm {
+
+class Ui;
+
+struct HudFigures {
+  double cpu_ms = 0;  // drawing the frame, on the CPU's clock (with the driver's work on llvmpipe)
+  double gpu_ms = 0;  // GL_TIME_ELAPSED over every pass
+  double fps = 0;     // frames presented per second, lately
+  glm::ivec2 resolution{0};
+  float time = 0;
+  int frame = 0;
+  bool paused = false;
+  bool animated = false;  // false: a static picture, drawn only on change
+  std::vector<std::pair<std::string, double>> passes;  // name, GPU ms, in draw order
+};
+
+struct KnobControl {
+  KnobValue value;        // as the compiler sees it now
+  bool overridden = false;  // set from the panel (or -D)
+  float edit = 0;         // the slider's value while it is dragged
+};
+
+struct UiModel {
+  Diagnostics errors;    // of the latest save that failed; empty once a save builds
+  Diagnostics warnings;  // that do not block; shown until dismissed
+  bool hud = false;
+  HudFigures figures;
+  UserUniforms uniforms;              // the controls the shader asks for
+  std::vector<UniformValue>* values;  // their values, which the controls change
+  std::vector<KnobControl> knobs;     // the knobs the scene uses
+  std::string preset;                 // "" for the scene's own, or a --quality name
+  double time = 0;
+  bool paused = false;
+  double speed = 1;
+};
+
+struct UiChanges {
+  bool uniforms = false;  // a value in *model.values changed
+  std::optional<std::pair<std::string, std::string>> knob;  // NAME, VALUE; VALUE "" goes back to the scene's
+  std::optional<std::string> preset;
+  bool toggle_pause = false, restart = false, dismiss_warnings = false;
+  int step = 0;  // frames forward (+) or back (-)
+  std::optional<double> seek, speed;
+};
+
+// Builds every panel of this frame (inside ui.begin() and ui.end()).
+UiChanges draw_panels(Ui& ui, UiModel& model);
+
+}  // namespace rm

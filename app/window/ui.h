@@ -1,0 +1,53 @@
+// Dear ImGui inside the window: one context with the GLFW and OpenGL 3
+// backends that Debian ships. It draws over the presented picture only, after
+// the graph has drawn, so F12 shots and `render` (which read the graph's own
+// targets) never contain it.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+struct GLFWwindow;
+
+namespace rm {
+
+class Ui {
+ public:
+  // The window's own GLFW callbacks forward to the on_* functions below, so
+  // the order of the two is ours, not the backend's chaining.
+  explicit Ui(GLFWwindow* window);
+  ~Ui();
+  Ui(const Ui&) = delete;
+  Ui& operator=(const Ui&) = delete;
+
+  bool visible() const { return visible_; }
+  void set_visible(bool visible) { visible_ = visible; }
+
+  // Whether the pointer at `cursor` (window coordinates) is over a panel, as
+  // the last frame laid them out: a press there is the UI's, not iMouse.
+  bool covers(glm::vec2 cursor) const;
+  bool wants_keyboard() const;  // a text field is being edited
+  bool dragging() const;        // a widget holds the mouse
+
+  void on_mouse_button(int button, int action, int mods);
+  void on_key(int key, int scancode, int action, int mods);
+  void on_char(unsigned int codepoint);
+  void on_scroll(double x, double y);
+  void on_cursor_enter(bool entered);  // the backend reads the pointer only over its window
+  void on_focus(bool focused);
+
+  // Starts a frame; widgets go between begin() and end(), which draws them
+  // over the bound framebuffer. Both do nothing while hidden.
+  void begin();
+  void end();
+  // Called by the panels inside each of their windows: where it lies.
+  void note_window_rect();
+
+ private:
+  GLFWwindow* window_;
+  bool visible_ = true;
+  bool in_frame_ = false;
+  std::vector<glm::vec4> rects_, next_rects_;  // x, y, width, height of each panel
+};
+
+}  // namespace rm
