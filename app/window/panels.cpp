@@ -196,8 +196,8 @@ void knob_controls(UiModel& model, UiChanges* changes) {
 void controls(Ui& ui, UiModel& model, UiChanges* changes) {
   const ImVec2 screen = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(screen.x - kMargin, kMargin), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth, 0.0f),
-                                      ImVec2(kPanelWidth, std::max(60.0f, screen.y - 2 * kMargin)));
+  const float width = std::clamp(screen.x - 2 * kMargin, 100.0f, kPanelWidth);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, std::max(60.0f, screen.y - 2 * kMargin)));
   ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);  // a title bar until opened
   ImGui::SetNextWindowBgAlpha(0.85f);
   if (ImGui::Begin("Controls", nullptr, kFixed | ImGuiWindowFlags_AlwaysAutoResize)) {

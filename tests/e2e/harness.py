@@ -130,3 +130,16 @@ def capture_screen(window, ppm_path):
     with open(ppm_path, "wb") as f:
         f.write(b"P6\n%d %d\n255\n" % (width, height) + bytes(rgb))
     return ppm_path
+
+
+def count_pixels(ppm_path, region, test):
+    """How many pixels of a binary PPM (as capture_screen writes) inside
+    region (x, y, w, h) pass test(r, g, b), with channels in [0, 255]."""
+    with open(ppm_path, "rb") as f:
+        magic, width, height, _, data = f.read().split(maxsplit=4)
+    width, x0, y0, w, h = int(width), *region
+    count = 0
+    for y in range(y0, y0 + h):
+        row = data[3 * (y * width + x0):3 * (y * width + x0 + w)]
+        count += sum(1 for i in range(0, len(row), 3) if test(row[i], row[i + 1], row[i + 2]))
+    return count

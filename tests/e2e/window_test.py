@@ -9,7 +9,11 @@ good frame and reports file:line; the fix reloads; Q quits with status 0. A seco
 image a scene names with #pragma channel0 when no --channel0 is given. A
 project of three passes: a drag paints into a feedback buffer and F12 shows
 it, a key reaches the shader, and a save to one buffer rebuilds only it.
-Idle: a shader that reads no clock is drawn once and then only on input it
+The interface (Dear ImGui), compared on the X screen itself (xwd) with F12:
+hidden it is exactly F12; a broken save puts text over the kept picture and
+the fix takes it away; a slider drag changes the picture, not iMouse, and
+`render --set` of the shot matches; the value survives a reload; the Pause
+button pauses. Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
 animated one, and so does an animated one while paused.
 """
@@ -21,8 +25,8 @@ import sys
 import tempfile
 import time
 
-from harness import (check, cpu_seconds, mean_colour, metadata, open_window, save_by_rename, summary,
-                     take_screenshot, wait_for, xdotool)
+from harness import (capture_screen, check, count_pixels, cpu_seconds, mean_colour, metadata, open_window, save_by_rename,
+                     summary, take_screenshot, wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 SIZE = (320, 180)
@@ -267,6 +271,121 @@ def project_session():
     check("Esc quits a keyboard project with status 0", status == 0, status)
 
 
+UI_SCENE = """// ui {n}
+uniform float gain;  // ui: min=0 max=1 default=0.25
+void mainImage(out vec4 c, in vec2 f) {{
+  c = vec4(gain, f.y / iResolution.y, 0.3, 1.0);
+  if (iMouse.z != 0.0) c.b = 1.0;  // a press that reached iMouse would show
+}}
+"""
+UI_SIZE = (480, 270)
+# Where Dear ImGui lays the collapsed "Controls" panel out at this size
+# (330 wide, 10 from the top right), and its widgets once it is open.
+PANEL_X = UI_SIZE[0] - 10 - 330
+PANEL_ARROW = (PANEL_X + 10, 19)
+PAUSE_BUTTON = (PANEL_X + 29, 69)
+GAIN_SLIDER = (PANEL_X + 8, PANEL_X + 172, 161)  # left end, right end, y
+
+
+def pixels_over(a, b, threshold, work, region=None):
+    """How many pixels of images a and b differ by more than `threshold` in
+    of R, G and B (the screen has no alpha), over `region` (x, y, w, h) or
+    the whole picture."""
+    cut = ["--cut", "{}x{}+{}+{}".format(*region[2:], *region[:2])] if region else []
+    rgb = []
+    for image, name in ((a, "rgb_a.png"), (b, "rgb_b.png")):
+        rgb.append(os.path.join(work, name))
+        subprocess.run(["oiiotool", image, "--ch", "R,G,B", *cut, "-o", rgb[-1]], check=True)
+    a, b = rgb
+    out = subprocess.run(["idiff", "-fail", str(threshold), a, b], capture_output=True, text=True).stdout
+    found = re.search(r"(\d+) pixels \([0-9.]+%\) over " + re.escape(f"{threshold:g}"), out)
+    return int(found.group(1)) if found else (0 if "PASS" in out else None)
+
+
+def interface_session():
+    work = tempfile.mkdtemp(prefix="rm-e2e-ui-")
+    scene = os.path.join(work, "ui.frag")
+    with open(scene, "w") as f:
+        f.write(UI_SCENE.format(n=1))
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, scene, "--size", f"{UI_SIZE[0]}x{UI_SIZE[1]}", "--shot-dir", work, "-v"],
+                       out_path, err_path, work)
+    window = wait_for(lambda: xdotool("search", "--name", "ui.frag"))
+    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
+        proc.kill()
+        check("the interface scene opens", False, open(err_path).read())
+        return
+    window = window.splitlines()[0]
+    screen = lambda name: capture_screen(window, os.path.join(work, name))
+
+    def screen_after(name, settle=0.5):
+        time.sleep(settle)  # the interface draws a few frames after an event
+        return screen(name)
+
+    shot = take_screenshot(window, out_path)
+    with_ui = screen_after("with_ui.ppm")
+    xdotool("key", "--window", window, "F2")
+    hidden = screen_after("hidden.ppm")
+    check("F2 hides the interface: the screen is then exactly the F12 shot",
+          shot and hidden and pixels_over(hidden, shot, 1.5 / 255, work) == 0,
+          pixels_over(hidden, shot, 1.5 / 255, work) if shot and hidden else (shot, hidden))
+    check("... and F12 never contains the interface, which the screen shows",
+          with_ui and pixels_over(with_ui, shot, 0.1, work) > 100, pixels_over(with_ui, shot, 0.1, work))
+    xdotool("key", "--window", window, "F2")
+
+    bottom = (20, UI_SIZE[1] - 60, UI_SIZE[0] - 40, 45)  # where the overlay shows, inside the stale frame
+    save_by_rename(scene, UI_SCENE.format(n=2).replace("0.3, 1.0);", "0.3, 1.0) + nope;"))
+    wait_for(lambda: "reload failed" in open(err_path).read())
+    broken = screen_after("broken.ppm", 1.0)
+    # The overlay's error text is light red; the picture has no red above 0.25.
+    text = count_pixels(broken, bottom, lambda r, g, b: r > 200 and g < 160) if broken else None
+    check("a broken save shows its error as text over the kept picture", text is not None and text > 100, text)
+    save_by_rename(scene, UI_SCENE.format(n=3))
+    wait_for(lambda: "presented generation 2" in open(err_path).read())
+    fixed = screen_after("fixed.ppm", 1.0)
+    text = pixels_over(fixed, shot, 1.5 / 255, work, bottom) if fixed else None
+    check("... and the fix takes the text away", text == 0, text)
+
+    # Open the panel, then drag the gain slider to its right end.
+    xdotool("mousemove", "--window", window, *PANEL_ARROW)
+    time.sleep(0.3)
+    xdotool("click", "--window", window, 1)
+    time.sleep(0.5)
+    left, right, y = GAIN_SLIDER
+    xdotool("mousemove", "--window", window, left + 40, y)
+    time.sleep(0.3)
+    xdotool("mousedown", "--window", window, 1)
+    for x in range(left + 40, right + 30, 20):
+        xdotool("mousemove", "--window", window, x, y)
+        time.sleep(0.05)
+    xdotool("mouseup", "--window", window, 1)
+    time.sleep(0.5)
+    dragged = take_screenshot(window, out_path)
+    gain = float(metadata(dragged).get("raymarching:uniform:gain", "nan")) if dragged else None
+    check("dragging the gain slider changes the uniform", gain is not None and gain > 0.95, gain)
+    check("... and the picture", dragged and pixels_over(dragged, shot, 0.5, work) > 1000,
+          pixels_over(dragged, shot, 0.5, work) if dragged else None)
+    check("... but not iMouse: a press on the panel is the panel's",
+          dragged and metadata(dragged).get("raymarching:iMouse") == "0,0,0,0", metadata(dragged) if dragged else None)
+    ok, detail = matches_render(dragged, scene, work) if dragged else (False, "no shot")
+    check("render --set, from the shot's metadata, reproduces it", ok, detail)
+
+    save_by_rename(scene, UI_SCENE.format(n=4).replace("f.y / iResolution.y", "1.0 - f.y / iResolution.y"))
+    wait_for(lambda: "presented generation 3" in open(err_path).read())
+    reloaded = take_screenshot(window, out_path)
+    kept = metadata(reloaded).get("raymarching:uniform:gain") if reloaded else None
+    check("a value set in the panel survives a reload", kept == metadata(dragged).get("raymarching:uniform:gain"),
+          kept)
+
+    xdotool("mousemove", "--window", window, *PAUSE_BUTTON)
+    time.sleep(0.3)
+    xdotool("click", "--window", window, 1)
+    check("the Pause button pauses time", wait_for(lambda: "(paused)" in xdotool("getwindowname", window), timeout=5),
+          xdotool("getwindowname", window))
+    status = quit_with(proc, window, "q")
+    check("Q still quits with the interface open", status == 0, status)
+
+
 # Costly enough per frame that drawing without pause shows in CPU time.
 STATIC = ("void mainImage(out vec4 c, in vec2 f) {\n  float v = 0.0;\n"
           "  for (int i = 0; i < 200; i++) v += sin(f.x * 0.01 + float(i));\n"
@@ -336,6 +455,7 @@ if __name__ == "__main__":
         main()
         scene_default_channel()
         project_session()
+        interface_session()
         idle_costs_nothing()
     finally:
         status = summary()
