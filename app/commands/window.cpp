@@ -15,6 +15,9 @@ WindowCommand::WindowCommand(CLI::App& app) {
   app.add_option("--shot-scale", shot_scale_, "Render screenshots at N times the window's pixels")->check(CLI::Range(1, 16));
   app.add_option("--watch", watch_, "File watching backend")->check(CLI::IsMember({"auto", "inotify", "poll"}));
   app.add_flag("-v,--verbose", verbose_, "Log reloads and presented frames to stderr");
+  app.add_flag("--no-ui", no_ui_, "Start with the interface hidden (F2 shows it)");
+  app.add_flag("--hud", hud_, "Start with the HUD shown (F3 toggles it)");
+  app.add_flag("--controls", controls_, "Start with the controls panel open");
   channels_.add_to(app);
 }
 
@@ -36,6 +39,9 @@ int WindowCommand::run() const {
                : watch_ == "inotify" ? WatchBackend::Inotify
                                      : WatchBackend::Auto;
   opts.verbose = verbose_;
+  opts.interface = !no_ui_;
+  opts.hud = hud_;
+  opts.controls = controls_;
   return run_window(opts);
 }
 

@@ -17,6 +17,9 @@ class WindowCommand {
   std::string scene_, media_, size_ = "800x450", shot_dir_ = ".", shot_format_ = "png", watch_ = "auto";
   int shot_scale_ = 1;
   bool verbose_ = false;
+  bool no_ui_ = false;
+  bool hud_ = false;
+  bool controls_ = false;
   SourceFlags source_;
   ChannelFlags channels_;
 };

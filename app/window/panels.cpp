@@ -198,7 +198,9 @@ void controls(Ui& ui, UiModel& model, UiChanges* changes) {
   ImGui::SetNextWindowPos(ImVec2(screen.x - kMargin, kMargin), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
   const float width = std::clamp(screen.x - 2 * kMargin, 100.0f, kPanelWidth);
   ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, std::max(60.0f, screen.y - 2 * kMargin)));
-  ImGui::SetNextWindowCollapsed(true, ImGuiCond_Once);  // a title bar until opened
+  if (model.open_controls) ImGui::SetNextWindowCollapsed(!*model.open_controls, ImGuiCond_Always);
+  else ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);  // a title bar until opened
+  model.open_controls.reset();
   ImGui::SetNextWindowBgAlpha(0.85f);
   if (ImGui::Begin("Controls", nullptr, kFixed | ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushItemWidth(-150.0f);

@@ -42,6 +42,7 @@ struct UiModel {
   Diagnostics errors;    // of the latest save that failed; empty once a save builds
   Diagnostics warnings;  // that do not block; shown until dismissed
   bool hud = false;
+  std::optional<bool> open_controls;  // a request for the panel's next frame; it starts folded
   HudFigures figures;
   UserUniforms uniforms;              // the controls the shader asks for
   std::vector<UniformValue>* values;  // their values, which the controls change

@@ -76,6 +76,9 @@ class WindowApp {
         watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
     model_.values = &inputs_.uniforms;
+    model_.hud = options.hud;
+    if (options.controls) model_.open_controls = true;
+    ui_.set_visible(options.interface);
   }
 
   int run() {

@@ -24,6 +24,9 @@ struct WindowOptions {
   std::filesystem::path media;        // a .json's shadertoy.com media
   WatchBackend watch = WatchBackend::Auto;
   bool verbose = false;               // log reloads and presented frames to stderr
+  bool interface = true;              // the interface shown at start (F2 toggles)
+  bool hud = false;                   // the HUD shown at start (F3 toggles)
+  bool controls = false;              // the controls panel open at start
 };
 
 // Runs until the window closes; returns the process exit status.
