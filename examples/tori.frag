@@ -1,5 +1,6 @@
 // tori.frag: a chain of five linked tori, each turning on its own axis, above
 // a mirror-polished floor. Drag with the left mouse button to move the sun.
+// The window's controls set how fast the tori spin and how polished the floor is.
 #define RM_SHADOWS 3
 #define RM_AO
 #define RM_REFLECTIONS 1
@@ -11,12 +12,15 @@
 #include <rm/camera.glsl>
 #include <rm/render.glsl>
 
+uniform float spin;   // ui: min=0 max=3 default=1
+uniform float polish; // ui: min=0 max=1 default=0.35
+
 // Torus i of the chain: alternate ones stand upright, so neighbours link.
 RmHit torus(int i, vec3 p) {
   float x = 1.1 * (float(i) - 2.0);
   vec3 q = p - vec3(x, 0.15 * sin(iTime + float(i)), 0.0);
   q = opRotate(q, rmRotationX(i % 2 == 0 ? 0.0 : 1.5708));  // upright or flat
-  q = opRotate(q, rmRotationY(0.4 * iTime * (i % 2 == 0 ? 1.0 : -1.0)));
+  q = opRotate(q, rmRotationY(0.4 * spin * iTime * (i % 2 == 0 ? 1.0 : -1.0)));
   return rmHit(sdTorus(q, vec2(0.6, 0.13)), float(i));
 }
 
@@ -37,7 +41,7 @@ RmMaterial material(vec3 p, vec3 n) {
 
 RmMaterial groundMaterial(vec3 p) {
   RmMaterial m = rmMaterial(vec3(0.2, 0.22, 0.25));
-  m.reflectivity = 0.35;
+  m.reflectivity = polish;
   return m;
 }
 

@@ -159,7 +159,22 @@ class DeepestNode : public glslang::TIntermTraverser {
 // glslang's verdict as the sandbox sends it: "DEPTH LINE\n" (the tree's
 // deepest level and its final source line, 0 0 when it did not parse), then
 // the info log.
-std::string parse_in_child(const Source& source) {
+// glslang's preprocessor over `text`, or nullopt if it fails. Call on a big stack.
+std::optional<std::string> preprocessed(const std::string& text) {
+  glslang::TShader shader(EShLangFragment);
+  const char* chars = text.c_str();
+  const int length = static_cast<int>(text.size());
+  shader.setStringsWithLengths(&chars, &length, 1);
+  glslang::TShader::ForbidIncluder includer;
+  std::string expanded;
+  if (!shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, EShMsgDefault, &expanded, includer))
+    return std::nullopt;
+  return expanded;
+}
+
+// The verdict line ("DEPTH LINE"), then glslang's log; with `active_text`,
+// then a NUL and its preprocessed text (a NUL never comes out of the log).
+std::string parse_in_child(const Source& source, const std::string* active_text) {
   std::string verdict;
   // glslang's traversals recurse once per level of the tree, and a 30,000-term
   // sum (60 KB of text) overflows an 8 MiB stack.
@@ -174,6 +189,7 @@ std::string parse_in_child(const Source& source) {
     DeepestNode deepest;
     if (tree && tree->getTreeRoot()) tree->getTreeRoot()->traverse(&deepest);
     verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog();
+    if (active_text) verdict += '\0' + preprocessed(*active_text).value_or("");
   });
   return verdict;
 }
@@ -196,13 +212,22 @@ void build_builtins_for(const std::string& version_line) {
 
 }  // namespace
 
-Diagnostics validate(const Source& source) {
+Diagnostics validate(const Source& source, std::string* active, const std::string& appended) {
   ensure_glslang_initialized();
   build_builtins_for(source.version_line);
   SandboxLimits limits;
   limits.seconds = kValidationSeconds;
   limits.bytes = kValidationBytes;
-  const SandboxResult child = run_sandboxed([&] { return parse_in_child(source); }, limits);
+  const std::string active_text = active ? source.text + "\n" + appended : std::string();
+  SandboxResult child = run_sandboxed([&] { return parse_in_child(source, active ? &active_text : nullptr); }, limits);
+  if (active) {
+    active->clear();
+    const size_t nul = child.output.find('\0');
+    if (child.status == SandboxResult::Status::Ok && nul != std::string::npos) {
+      *active = child.output.substr(nul + 1);
+      child.output.resize(nul);
+    }
+  }
   if (child.status != SandboxResult::Status::Ok) {
     Diagnostic d;
     d.path = source.files.empty() ? std::string() : source.files.front().string();
@@ -300,15 +325,7 @@ std::optional<std::string> active_code(const std::string& text) {
       [&] {
         std::string out;
         run_with_stack(kValidationStack, [&] {
-          glslang::TShader shader(EShLangFragment);
-          const char* chars = text.c_str();
-          const int length = static_cast<int>(text.size());
-          shader.setStringsWithLengths(&chars, &length, 1);
-          glslang::TShader::ForbidIncluder includer;
-          std::string expanded;
-          if (shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, EShMsgDefault, &expanded,
-                                includer))
-            out = "+" + expanded;
+          if (auto expanded = preprocessed(text)) out = "+" + *expanded;
         });
         return out;
       },

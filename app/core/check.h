@@ -22,7 +22,11 @@ constexpr size_t kValidationStack = size_t{256} << 20;
 
 // Runs glslang's parser and semantic checks on source.text (fragment stage)
 // within the limits above, and refuses a tree deeper than kMaxTreeDepth.
-Diagnostics validate(const Source& source);
+// With `active`, the same child also runs glslang's preprocessor over
+// source.text followed by `appended`, and leaves the result there, line for
+// line (what active_code() gives; empty if the preprocessor fails): the
+// uniforms and the knobs read it, and a reload forks once, not three times.
+Diagnostics validate(const Source& source, std::string* active = nullptr, const std::string& appended = {});
 
 // What the compiler sees: source.text after glslang's own preprocessor, with
 // macros expanded and the #if branches not taken removed (a compiler's -E).

@@ -37,15 +37,23 @@ std::string preset_macro(const std::string& preset) {
   return name;
 }
 
-std::vector<KnobValue> knob_values(const Source& source) {
+const std::string& knob_probes() {
+  static const std::string probes = [] {
+    std::string text;
+    for (size_t i = 0; i < knob_table().size(); ++i)
+      text += "rm_knob_probe_" + std::to_string(i) + " " + knob_table()[i].name + ";\n";
+    return text;
+  }();
+  return probes;
+}
+
+std::vector<KnobValue> knob_values(const Source& source, const std::string* given) {
   std::vector<KnobValue> out;
   if (source.text.find("RM_QUALITY_GLSL") == std::string::npos) return out;  // no shaderlib module with knobs
-  // One probe line per knob after the scene's last line: "rm_knob_probe_3 RM_MAX_STEPS ;"
-  // comes out of the preprocessor as "rm_knob_probe_3 160;", or unchanged where undefined.
+  // An undefined knob comes out of the preprocessor as its own name.
   const auto& table = knob_table();
-  std::string text = source.text + "\n";
-  for (size_t i = 0; i < table.size(); ++i) text += "rm_knob_probe_" + std::to_string(i) + " " + table[i].name + " ;\n";
-  const auto active = active_code(text);
+  const auto active = given && !given->empty() ? std::optional<std::string>(*given)
+                                               : active_code(source.text + "\n" + knob_probes());
   if (!active) return out;
   for (size_t i = 0; i < table.size(); ++i) {
     const std::string marker = "rm_knob_probe_" + std::to_string(i) + " ";

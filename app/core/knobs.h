@@ -29,10 +29,16 @@ struct KnobValue {
   std::string value;  // as the compiler sees it: "160", "1e-4", "( 100.0 * 0.5 )"
 };
 
+// Lines that, appended to a scene and run through glslang's preprocessor,
+// show each knob's value ("rm_knob_probe_2 RM_MAX_STEPS;" -> "rm_knob_probe_2 160;").
+const std::string& knob_probes();
+
 // The knobs `source` uses (those its code defines), with the values its
 // preprocessor gives them after the scene's own #defines, the -D and the
-// preset. Empty for a scene without shaderlib: the preprocessor is then not run.
-std::vector<KnobValue> knob_values(const Source& source);
+// preset. `active` is that preprocessor's output for source.text followed by
+// knob_probes() (validate() makes it); without it, the preprocessor is run
+// here. Empty for a scene without shaderlib.
+std::vector<KnobValue> knob_values(const Source& source, const std::string* active = nullptr);
 
 // `defines` with NAME set to VALUE: an existing -D of NAME is replaced, and
 // an empty VALUE removes it.

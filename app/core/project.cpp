@@ -241,7 +241,8 @@ bool Project::reads_keyboard() const {
 
 UserUniforms Project::user_uniforms() const {
   UserUniforms all;
-  for (const Pass& pass : passes_) merge_user_uniforms(&all, find_user_uniforms(pass.scene->source()));
+  for (const Pass& pass : passes_)
+    merge_user_uniforms(&all, find_user_uniforms(pass.scene->source(), &pass.scene->active_code()));
   return all;
 }
 

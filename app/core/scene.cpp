@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include "core/check.h"
+#include "core/knobs.h"
 
 namespace rm {
 
@@ -46,7 +47,8 @@ ReloadStatus Scene::prepare() {
     pending_diagnostics_.clear();
     return ReloadStatus::Swapped;
   }
-  Diagnostics diags = validate(source);
+  std::string active;
+  Diagnostics diags = validate(source, &active, knob_probes());
   if (count_errors(diags) > 0) {
     diagnostics_ = std::move(diags);
     return ReloadStatus::Failed;
@@ -58,16 +60,17 @@ ReloadStatus Scene::prepare() {
     return ReloadStatus::Failed;
   }
   std::string text = source.text;
-  pending_ = Built{std::move(text), std::move(*built), std::move(source)};
+  pending_ = Built{std::move(text), std::move(*built), std::move(source), std::move(active)};
   pending_diagnostics_ = std::move(diags);  // warnings only
   return ReloadStatus::Swapped;
 }
 
 void Scene::commit() {
   if (!pending_) return;
-  if (program_) cache({good_source_.text, std::move(*program_), std::move(good_source_)});
+  if (program_) cache({good_source_.text, std::move(*program_), std::move(good_source_), std::move(good_active_)});
   program_ = std::move(pending_->program);
   good_source_ = std::move(pending_->source);
+  good_active_ = std::move(pending_->active);
   pending_.reset();
   diagnostics_ = std::move(pending_diagnostics_);
   pending_diagnostics_.clear();

@@ -43,6 +43,9 @@ class Scene {
 
   const Program* program() const { return program_ ? &*program_ : nullptr; }
   const Source& source() const { return good_source_; }  // of the running program
+  // glslang's preprocessor output for the running program's text followed by
+  // knob_probes(), line for line (from the same child as its validation).
+  const std::string& active_code() const { return good_active_; }
   const fs::path& path() const { return path_; }
   // Errors of the latest attempt; empty after a good load.
   const Diagnostics& diagnostics() const { return diagnostics_; }
@@ -56,6 +59,7 @@ class Scene {
   FileSystem files_;
   std::optional<Program> program_;
   Source good_source_;
+  std::string good_active_;
   std::string attempted_text_;
   bool attempted_ = false;
   Diagnostics diagnostics_;
@@ -66,6 +70,7 @@ class Scene {
     std::string text;
     Program program;
     Source source;
+    std::string active;  // see active_code()
   };
   static constexpr size_t kCacheSize = 8;
   std::vector<Built> cache_;

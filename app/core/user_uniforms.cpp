@@ -135,7 +135,7 @@ std::string uniform_value_text(const UserUniform::Type type, const std::vector<f
   return out;
 }
 
-UserUniforms find_user_uniforms(const Source& source) {
+UserUniforms find_user_uniforms(const Source& source, const std::string* given) {
   UserUniforms found;
   // Candidates first, from the text with its comments; then the preprocessor
   // says which lines are live (its output keeps the source's lines).
@@ -156,7 +156,9 @@ UserUniforms find_user_uniforms(const Source& source) {
   }
   if (candidates.empty()) return found;
   std::vector<bool> live(source.line_map.size(), true);
-  if (auto active = active_code(source.text)) {
+  const auto active =
+      given && !given->empty() ? std::optional<std::string>(*given) : active_code(source.text);
+  if (active) {
     size_t l = 0;
     for (size_t at = 0; at <= active->size() && l < live.size(); ++l) {
       size_t end = active->find('\n', at);

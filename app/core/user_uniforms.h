@@ -40,7 +40,9 @@ struct UserUniforms {
 
 // The uniforms the source declares in its active code (not in an `#if`
 // branch the preprocessor drops), less the host's inputs and channels.
-UserUniforms find_user_uniforms(const Source& source);
+// `active` is glslang's preprocessed source.text, line for line (validate()
+// makes it); without it, the preprocessor is run here when needed.
+UserUniforms find_user_uniforms(const Source& source, const std::string* active = nullptr);
 
 // A value as `--set` and the screenshot metadata spell it: "1.5", "3",
 // "true", "0.1,0.2,0.3". nullopt with *error if it does not fit `u`.

@@ -52,7 +52,8 @@ void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
   ImGui::PushTextWrapPos(0.0f);
   const int errors = count_errors(model.errors);
   if (errors > 0) {
-    ImGui::TextColored(kErrorColour, "%d %s; showing the last good picture", errors, errors == 1 ? "error" : "errors");
+    ImGui::TextColored(kErrorColour, "%d %s; %s", errors, errors == 1 ? "error" : "errors",
+                       model.has_picture ? "showing the last good picture" : "nothing to show yet");
     for (const Diagnostic& d : model.errors)
       if (d.severity == Severity::Error) ImGui::TextColored(kErrorColour, "%s", d.str().c_str());
   }

@@ -41,6 +41,7 @@ struct KnobControl {
 struct UiModel {
   Diagnostics errors;    // of the latest save that failed; empty once a save builds
   Diagnostics warnings;  // that do not block; shown until dismissed
+  bool has_picture = false;  // a last good picture to show under the errors
   bool hud = false;
   std::optional<bool> open_controls;  // a request for the panel's next frame; it starts folded
   HudFigures figures;

@@ -182,6 +182,7 @@ class WindowApp {
     model_.warnings.clear();
     for (const Diagnostic& d : diags) (d.severity == Severity::Error ? model_.errors : model_.warnings).push_back(d);
     if (project_.ready()) use_ = project_.inputs_read();
+    model_.has_picture = project_.ready();
     if (status == ReloadStatus::Swapped) {
       take_user_uniforms();
       take_knobs();
@@ -238,7 +239,7 @@ class WindowApp {
     for (const Define& d : source_.defines)
       for (const char* preset : quality_presets())
         if (d.name == "RM_QUALITY" && d.value == preset_macro(preset)) model_.preset = preset;
-    for (const KnobValue& k : knob_values(project_.image_source())) {
+    for (const KnobValue& k : knob_values(project_.image_source(), &project_.image().scene->active_code())) {
       KnobControl control{k, false, 0.0f};
       for (const Define& d : source_.defines) control.overridden |= d.name == k.knob->name;
       control.edit = static_cast<float>(std::atof(k.value.c_str()));

@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
       model.values = &in.uniforms;
       model.uniforms = project.user_uniforms();
       in.uniforms = rm::uniform_values(model.uniforms, {}, &error).value_or(std::vector<rm::UniformValue>{});
-      for (const rm::KnobValue& k : rm::knob_values(project.image_source())) model.knobs.push_back({k, false, 1.0f});
+      for (const rm::KnobValue& k : rm::knob_values(project.image_source(), &project.image().scene->active_code())) model.knobs.push_back({k, false, 1.0f});
 
       auto scene = [&](int i, GLuint target) {
         in.time = 1.0f + i / 60.0f;

@@ -5,6 +5,7 @@
 
 #include <map>
 
+#include "core/check.h"
 #include "core/data_paths.h"
 #include "core/knobs.h"
 #include "support.h"
@@ -12,7 +13,8 @@
 namespace rm {
 namespace {
 
-std::map<std::string, std::string> knobs_of(const std::string& text, std::vector<Define> defines = {}) {
+std::map<std::string, std::string> knobs_of(const std::string& text, std::vector<Define> defines = {},
+                                            bool from_validation = false) {
   test::TempDir dir;
   test::write_file(dir / "s.frag", text + "void mainImage(out vec4 c, in vec2 f) { c = vec4(0); }\n");
   SourceOptions options;
@@ -21,7 +23,9 @@ std::map<std::string, std::string> knobs_of(const std::string& text, std::vector
   const Source source = preprocess(dir / "s.frag", options);
   EXPECT_TRUE(source.ok()) << join(source.errors);
   std::map<std::string, std::string> out;
-  for (const KnobValue& k : knob_values(source)) out[k.knob->name] = k.value;
+  std::string active;
+  if (from_validation) EXPECT_TRUE(validate(source, &active, knob_probes()).empty());
+  for (const KnobValue& k : knob_values(source, from_validation ? &active : nullptr)) out[k.knob->name] = k.value;
   return out;
 }
 
@@ -37,6 +41,17 @@ TEST(Knobs, TheScenesOwnDefinesThenDThenThePreset) {
   EXPECT_EQ(knobs_of("#define RM_MAX_STEPS 90\n#include <rm/march.glsl>\n").at("RM_MAX_STEPS"), "90");
   EXPECT_EQ(knobs_of("#include <rm/march.glsl>\n", {{"RM_MAX_STEPS", "33"}}).at("RM_MAX_STEPS"), "33");
   EXPECT_EQ(knobs_of("#include <rm/march.glsl>\n", {{"RM_QUALITY", preset_macro("draft")}}).at("RM_MAX_STEPS"), "64");
+}
+
+// The window reads them from its validation's child: one fork per reload.
+TEST(Knobs, TheSameFromValidation) {
+  const std::string scene = "#define RM_SHADOW_STEPS 12\n#include <rm/render.glsl>\n"
+                            "float map(vec3 p) { return length(p) - 1.0; }\n"
+                            "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(1.0)); }\n";
+  const auto knobs = knobs_of(scene, {{"RM_OMEGA", "1.3"}}, true);
+  EXPECT_EQ(knobs, knobs_of(scene, {{"RM_OMEGA", "1.3"}}));
+  EXPECT_EQ(knobs.at("RM_SHADOW_STEPS"), "12");
+  EXPECT_EQ(knobs.at("RM_OMEGA"), "1.3");
 }
 
 TEST(Knobs, NoneWithoutShaderlib) { EXPECT_TRUE(knobs_of("#define RM_MAX_STEPS 5\n").empty()); }
