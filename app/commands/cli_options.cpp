@@ -13,6 +13,7 @@
 
 #include "core/data_paths.h"
 #include "core/files.h"
+#include "core/knobs.h"
 #include "core/lexing.h"
 
 namespace rm::cli {
@@ -109,7 +110,7 @@ void SourceFlags::add_to(CLI::App& app) {
     app.add_option("-I", includes, "Add DIR to the #include search path")->type_name("DIR")->allow_extra_args(false);
     app.add_option("-D", defines, "Define macro NAME (as VALUE, default 1) after #version")->type_name("NAME[=VALUE]")->allow_extra_args(false);
     app.add_option("--quality", quality, "shaderlib preset: the same as -D RM_QUALITY=RM_<NAME>")
-        ->check(CLI::IsMember({"draft", "interactive", "final", "reference"}));
+        ->check(CLI::IsMember(std::vector<std::string>(quality_presets().begin(), quality_presets().end())));
 }
 
 SourceOptions SourceFlags::source() const {
@@ -124,11 +125,7 @@ SourceOptions SourceFlags::source() const {
       if (!is_name) throw UsageError{"-D '" + d + "': '" + def.name + "' is not a macro name"};
       out.defines.push_back(def);
     }
-    if (!quality.empty()) {
-      std::string name = "RM_" + quality;
-      std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
-      out.defines.push_back({"RM_QUALITY", name});
-    }
+    if (!quality.empty()) out.defines.push_back({"RM_QUALITY", preset_macro(quality)});
     return out;
 }
 

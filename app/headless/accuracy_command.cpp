@@ -12,6 +12,7 @@
 
 #include "core/capture.h"
 #include "core/frame_graph.h"
+#include "core/knobs.h"
 #include "core/project.h"
 #include "core/check.h"
 #include "core/diagnostics.h"
@@ -61,11 +62,8 @@ std::vector<Setting> sweep() {
   knob("RM_REFLECTIONS", {"0", "1", "2", "4"});
   knob("RM_REFRACTION", {"0", "2", "4", "8"});
   knob("RM_SAMPLES", {"2", "3"});
-  for (const char* preset : {"draft", "interactive", "final"}) {
-    std::string name = std::string("RM_") + preset;
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
-    out.push_back({"preset", preset, {{"RM_QUALITY", name}}, {}});
-  }
+  for (const char* preset : {"draft", "interactive", "final"})
+    out.push_back({"preset", preset, {{"RM_QUALITY", preset_macro(preset)}}, {}});
   // The loop a tutorial writes: a fixed absolute epsilon, no over-relaxation, no bounds.
   out.push_back({"textbook", "textbook",
                  {{"RM_HIT_PIXELS", "0.0"}, {"RM_HIT_EPSILON", "0.001"}, {"RM_OMEGA", "1.0"}},

@@ -15,6 +15,7 @@ class KeptPicture {
   GLuint target(glm::ivec2 size);
   bool has_picture() const { return drawn_; }
   void mark_drawn() { drawn_ = true; }
+  void forget() { drawn_ = false; }  // the picture moved on without it
   // Copies the picture to the window's framebuffer (0), at the same size.
   void present() const;
 

@@ -283,8 +283,11 @@ class WindowApp {
     dirty_ = true;
   }
 
-  // One iteration's picture: the scene drawn again when `redraw` (into the
-  // kept picture), then the kept picture, the stale badge and the interface.
+  // One iteration's picture: the scene drawn again when `redraw`, then the
+  // stale badge and the interface. With the interface shown the scene goes
+  // into the kept picture, which is copied to the window, so that the
+  // interface can be drawn again over it without the shader; hidden (F2), it
+  // goes straight to the window, and the interface costs nothing.
   void frame(bool redraw) {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
@@ -294,11 +297,14 @@ class WindowApp {
       ui_frames_ = 0;
       return;
     }
-    if (redraw || !picture_.has_picture()) draw_picture(width, height);
+    bool straight = false;
+    if (redraw || (ui_.visible() && !picture_.has_picture())) straight = draw_picture(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, width, height);
-    if (picture_.has_picture()) {
+    if (straight) {
+      // drawn in the window already
+    } else if (picture_.has_picture()) {
       picture_.present();
     } else {
       glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
@@ -330,7 +336,8 @@ class WindowApp {
     apply(changes);
   }
 
-  void draw_picture(int width, int height) {
+  // Returns whether the scene went straight into the window (interface hidden).
+  bool draw_picture(int width, int height) {
     const float delta = clock_.tick();
     inputs_.resolution = glm::vec3(width, height, 1.0f);
     inputs_.time = static_cast<float>(clock_.time());
@@ -341,14 +348,15 @@ class WindowApp {
     inputs_.cursor = mouse_.cursor();
     inputs_.date = date_of(std::chrono::system_clock::now());
 
-    if (!project_.ready()) return;  // the grey until a first good load
+    if (!project_.ready()) return false;  // the grey until a first good load
     // With the HUD or the knobs shown, every pass is timed on the GPU, and on
     // the CPU's clock through glFinish (llvmpipe's GPU figure misses its threads).
     const bool timed = ui_.visible() && (model_.hud || !model_.knobs.empty());
     graph_.time_passes(timed, true);
-    const GLuint target = picture_.target({width, height});
-    graph_.draw(project_, inputs_, {width, height}, target);
-    picture_.mark_drawn();
+    const bool straight = !ui_.visible();
+    if (straight) picture_.forget();
+    graph_.draw(project_, inputs_, {width, height}, straight ? 0 : picture_.target({width, height}));
+    if (!straight) picture_.mark_drawn();
     if (timed) take_figures(width, height);
     ++frames_drawn_;
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
@@ -357,6 +365,7 @@ class WindowApp {
     graph_.keyboard().end_frame();
     if (!clock_.paused()) clock_.next_frame();
     if (delta < 0.25f) frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;  // not across idle waits
+    return straight;
   }
 
   void take_figures(int width, int height) {

@@ -5,10 +5,11 @@
 // For each scene, alternating in 5 rounds of 10 frames after 3 warm-up
 // frames (the lowest round median of each, wall clock through glFinish and
 // the swap):
-//   - straight to the window: the graph draws into framebuffer 0, as the
-//     window did before it kept its picture;
-//   - the kept picture, interface hidden (F2): drawn into a texture, copied;
-//   - the interface as it opens: the collapsed panel's title bar;
+//   - interface hidden (F2): the graph draws straight into the window, as
+//     the window did before it had an interface;
+//   - the kept picture alone: drawn into a texture and copied to the window,
+//     what showing the interface adds before any widget;
+//   - the interface shown as it opens: the folded panel's title bar;
 //   - with the HUD: every pass timed (GL_TIME_ELAPSED and glFinish);
 //   - with the HUD and the panel open (time, uniforms, knobs);
 //   - the interface alone over the kept picture: what a hover costs a
@@ -77,8 +78,8 @@ int main(int argc, char** argv) {
     rm::KeptPicture picture;
     rm::Ui ui(window);
     const glm::ivec2 size{kWidth, kHeight};
-    std::printf("| scene | straight to the window | kept picture, interface hidden | interface: title bar | "
-                "+ HUD | + HUD and open panel | interface alone over the kept picture |\n"
+    std::printf("| scene | hidden (F2): straight to the window | kept picture, copied | shown: folded panel | "
+                "+ HUD | + HUD and open panel | the interface alone over the kept picture |\n"
                 "|---|---:|---:|---:|---:|---:|---:|\n");
     for (int a = 1; a < argc; ++a) {
       const fs::path path = argv[a];
