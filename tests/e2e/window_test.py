@@ -13,7 +13,8 @@ The interface (Dear ImGui), compared on the X screen itself (xwd) with F12:
 hidden it is exactly F12; a broken save puts text over the kept picture and
 the fix takes it away; a slider drag changes the picture, not iMouse, and
 `render --set` of the shot matches; the value survives a reload; the Pause
-button pauses. Idle: a shader that reads no clock is drawn once and then only on input it
+button pauses; a knob moved in tori's panel rebuilds it with the -D, which
+F12 records for `render`. Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
 animated one, and so does an animated one while paused.
 """
@@ -386,6 +387,43 @@ def interface_session():
     check("Q still quits with the interface open", status == 0, status)
 
 
+KNOB_SIZE = (640, 400)
+# RM_MAX_STEPS's slider in examples/tori.frag's open panel at this size,
+# below Time (4 rows), Uniforms (spin, polish) and the knobs' header, frame
+# time, preset, RM_HIT_PIXELS and RM_HIT_EPSILON.
+MAX_STEPS_SLIDER = (KNOB_SIZE[0] - 10 - 330 + 12, 316)
+
+
+def knob_session():
+    """A knob moved in the panel rebuilds the scene with its -D, and F12
+    records it, so that `render` of the shot's command line matches."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-knob-")
+    tori = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../examples/tori.frag")
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, tori, "--size", f"{KNOB_SIZE[0]}x{KNOB_SIZE[1]}", "--controls", "--shot-dir", work,
+                        "-v"], out_path, err_path, work)
+    window = wait_for(lambda: xdotool("search", "--name", "tori.frag"), timeout=40)
+    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read(), timeout=40):
+        proc.kill()
+        check("tori opens with its controls", False, open(err_path).read())
+        return
+    window = window.splitlines()[0]
+    xdotool("mousemove", "--window", window, *MAX_STEPS_SLIDER)
+    time.sleep(0.5)
+    xdotool("click", "--window", window, 1)
+    check("letting go of a knob's slider rebuilds the scene with its -D",
+          wait_for(lambda: all(line in open(err_path).read() for line in ("reload ok generation 2", "-D RM_MAX_STEPS=")),
+                   timeout=30), open(err_path).read()[-2000:])
+    wait_for(lambda: "presented generation 2" in open(err_path).read(), timeout=30)
+    shot = take_screenshot(window, out_path)
+    steps = metadata(shot).get("raymarching:define:RM_MAX_STEPS") if shot else None
+    check("F12 records the knob", steps is not None and int(steps) < 30, steps)
+    ok, detail = matches_render(shot, tori, work) if shot else (False, "no shot")
+    check("... and render of the shot's command line matches it", ok, detail)
+    status = quit_with(proc, window, "q")
+    check("Q quits tori with status 0", status == 0, status)
+
+
 # Costly enough per frame that drawing without pause shows in CPU time.
 STATIC = ("void mainImage(out vec4 c, in vec2 f) {\n  float v = 0.0;\n"
           "  for (int i = 0; i < 200; i++) v += sin(f.x * 0.01 + float(i));\n"
@@ -456,6 +494,7 @@ if __name__ == "__main__":
         scene_default_channel()
         project_session()
         interface_session()
+        knob_session()
         idle_costs_nothing()
     finally:
         status = summary()
