@@ -14,7 +14,8 @@ hidden it is exactly F12; a broken save puts text over the kept picture and
 the fix takes it away; a slider drag changes the picture, not iMouse, and
 `render --set` of the shot matches; the value survives a reload; the Pause
 button pauses; a knob moved in tori's panel rebuilds it with the -D, which
-F12 records for `render`. Idle: a shader that reads no clock is drawn once and then only on input it
+F12 records for `render`; a warning shows in a smaller line until dismissed.
+Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
 animated one, and so does an animated one while paused.
 """
@@ -387,6 +388,60 @@ def interface_session():
     check("Q still quits with the interface open", status == 0, status)
 
 
+WARNING_SCENE = """void mainImage(out vec4 c, in vec2 f) {
+  c = vec4(0.5, 0.5, 0.5, 1.0) + 0.0 * texture(iChannel1, f / iResolution.xy);
+}
+"""
+
+
+def find_pixels(ppm, region, test):
+    """The centre of the pixels of a binary PPM in region (x, y, w, h) that
+    pass test(r, g, b), or None."""
+    with open(ppm, "rb") as f:
+        _, width, _, _, data = f.read().split(maxsplit=4)
+    width, (x0, y0, w, h) = int(width), region
+    found = [(x, y) for y in range(y0, y0 + h) for x in range(x0, x0 + w)
+             if test(*data[3 * (y * width + x):3 * (y * width + x) + 3])]
+    if not found:
+        return None
+    xs, ys = [x for x, _ in found], [y for _, y in found]
+    return (min(xs) + max(xs)) // 2, (min(ys) + max(ys)) // 2
+
+
+def warning_session():
+    """A warning that does not block (an unbound channel) shows over the
+    running picture in a smaller line, and `dismiss` takes it away."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-warn-")
+    scene = os.path.join(work, "warn.frag")
+    with open(scene, "w") as f:
+        f.write(WARNING_SCENE)
+    err_path = os.path.join(work, "stderr.txt")
+    proc = open_window([BINARY, scene, "--size", "480x270", "-v"], os.path.join(work, "stdout.txt"), err_path, work)
+    window = wait_for(lambda: xdotool("search", "--name", "warn.frag"))
+    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
+        proc.kill()
+        check("the warning scene opens", False, open(err_path).read())
+        return
+    window = window.splitlines()[0]
+    time.sleep(0.5)
+    yellow = lambda r, g, b: r > 200 and g > 150 and b < 120  # the warning's colour; the picture is grey
+    bottom = (20, 150, 440, 110)
+    before = capture_screen(window, os.path.join(work, "warned.ppm"))
+    shown = count_pixels(before, bottom, yellow) if before else None
+    check("a warning shows over the running picture", shown is not None and shown > 50, shown)
+    # Dear ImGui's button is the only blue in the overlay over a grey picture.
+    button = find_pixels(before, bottom, lambda r, g, b: b > r + 50 and b > g + 25) if before else None
+    if button:
+        xdotool("mousemove", "--window", window, *button)
+        time.sleep(0.3)
+        xdotool("click", "--window", window, 1)
+        time.sleep(0.5)
+    after = capture_screen(window, os.path.join(work, "dismissed.ppm"))
+    left = count_pixels(after, bottom, yellow) if after and button else None
+    check("... and `dismiss` takes it away", left == 0, (button, left))
+    quit_with(proc, window, "q")
+
+
 KNOB_SIZE = (640, 400)
 # RM_MAX_STEPS's slider in examples/tori.frag's open panel at this size,
 # below Time (4 rows), Uniforms (spin, polish) and the knobs' header, frame
@@ -495,6 +550,7 @@ if __name__ == "__main__":
         project_session()
         interface_session()
         knob_session()
+        warning_session()
         idle_costs_nothing()
     finally:
         status = summary()
