@@ -58,13 +58,13 @@ void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
       if (d.severity == Severity::Error) ImGui::TextColored(kErrorColour, "%s", d.str().c_str());
   }
   if (!model.warnings.empty()) {
-    ImGui::SetWindowFontScale(0.85f);
+    ImGui::PushFont(ui.small_font());
     if (ImGui::SmallButton("dismiss")) changes->dismiss_warnings = true;
     ImGui::SameLine();
     ImGui::TextColored(kWarningColour, "%zu %s", model.warnings.size(),
                        model.warnings.size() == 1 ? "warning" : "warnings");
     for (const Diagnostic& d : model.warnings) ImGui::TextColored(kWarningColour, "%s", d.str().c_str());
-    ImGui::SetWindowFontScale(1.0f);
+    ImGui::PopFont();
   }
   ImGui::PopTextWrapPos();
   ImGui::End();

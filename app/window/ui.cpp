@@ -14,6 +14,10 @@ Ui::Ui(GLFWwindow* window) : window_(window) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini in the person's directory
+  io.Fonts->AddFontDefault();
+  ImFontConfig small;
+  small.SizePixels = 11.0f;
+  small_font_ = io.Fonts->AddFontDefault(&small);
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_, false);
   ImGui_ImplOpenGL3_Init("#version 450 core");

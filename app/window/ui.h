@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 struct GLFWwindow;
+struct ImFont;
 
 namespace rm {
 
@@ -42,11 +43,14 @@ class Ui {
   void end();
   // Called by the panels inside each of their windows: where it lies.
   void note_window_rect();
+  // Dear ImGui's own font, rasterised smaller (for warnings) than the 13 px default.
+  ImFont* small_font() const { return small_font_; }
 
  private:
   GLFWwindow* window_;
   bool visible_ = true;
   bool in_frame_ = false;
+  ImFont* small_font_ = nullptr;
   std::vector<glm::vec4> rects_, next_rects_;  // x, y, width, height of each panel
 };
 
