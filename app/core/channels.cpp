@@ -145,10 +145,7 @@ namespace {
 std::vector<std::filesystem::file_time_type> stamps_of(const ChannelSpec& spec) {
   std::vector<std::filesystem::path> files{spec.path};
   if (spec.shape == ChannelSpec::Shape::Cube) {
-    auto faces = cube_face_files(spec.path, [](const std::filesystem::path& p) {
-      std::error_code ec;
-      return std::filesystem::exists(p, ec);
-    });
+    auto faces = cube_face_files(spec.path, exists_on_disk);
     if (!faces.empty()) files = std::move(faces);
   }
   std::vector<std::filesystem::file_time_type> stamps;

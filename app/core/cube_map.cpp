@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/channels.h"
+#include "core/files.h"
 
 namespace rm {
 
@@ -99,10 +100,7 @@ std::optional<CubeFaces> cube_from_faces(std::array<Image, 6> faces, std::string
 }
 
 std::optional<CubeFaces> load_cube_map(const std::filesystem::path& path, std::string* error) {
-  const std::vector<std::filesystem::path> files = cube_face_files(path, [](const std::filesystem::path& p) {
-    std::error_code ec;
-    return std::filesystem::exists(p, ec);
-  });
+  const std::vector<std::filesystem::path> files = cube_face_files(path, exists_on_disk);
   if (files.size() == 6) {
     std::array<Image, 6> faces;
     for (size_t f = 0; f < 6; ++f) {

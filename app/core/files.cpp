@@ -53,6 +53,11 @@ std::string over(std::uintmax_t bytes, std::uintmax_t limit, const char* what) {
 
 std::string over_the_limit(std::uintmax_t bytes) { return over(bytes, kMaxShaderBytes, "shader files"); }
 
+bool exists_on_disk(const std::filesystem::path& path) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
 std::optional<std::string> unreadable_because(const std::filesystem::path& path) {
   struct stat st {};
   if (stat(path.c_str(), &st) != 0) return open_error(errno);

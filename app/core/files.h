@@ -19,6 +19,9 @@ constexpr std::uintmax_t kMaxShaderBytes = 16u << 20;
 // Nothing is opened.
 std::optional<std::string> unreadable_because(const std::filesystem::path& path);
 
+// Whether anything is at `path`; false, not an exception, when it cannot be told.
+bool exists_on_disk(const std::filesystem::path& path);
+
 // The bytes of the shader file at `path`: a regular file, refused by its
 // size when it holds more than kMaxShaderBytes. nullopt with *error set in
 // the words above.
