@@ -39,6 +39,26 @@ std::string text_of(const json& v) {
   return "";
 }
 
+// What stands in for media that is not in --media, by input type: a pass
+// that draws something like it, or (no file) black. A new stand-in is a row.
+struct StandIn {
+  const char* ctype;
+  const char* what;  // "value noise stands in for it"
+  const char* file;
+  const char* text;
+};
+const StandIn kStandIns[] = {
+    {"texture", "value noise", "standin_noise.frag", kStandInNoise},
+    {"cubemap", "a sky", "standin_sky.frag", kStandInSky},
+    {"volume", nullptr, nullptr, nullptr},
+};
+
+const StandIn& stand_in_for(const std::string& ctype) {
+  for (const StandIn& s : kStandIns)
+    if (ctype == s.ctype) return s;
+  return kStandIns[0];
+}
+
 // "Buffer A", "Buf A", "BufferA" -> 0; -1 for anything else.
 int buffer_index_of_name(const std::string& name) {
   std::string letters;
@@ -212,21 +232,16 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         } else {
           const std::string missing = where + ": '" + src + "' is not in --media" +
                                       (media_dir.empty() ? "" : " '" + media_dir.string() + "'");
-          if (ctype == "volume") {
+          const StandIn& instead = stand_in_for(ctype);
+          if (!instead.file) {
             project.warnings.push_back(missing + "; it reads black");
             spec.kind = ChannelSpec::Kind::Black;
-          } else if (ctype == "cubemap") {
-            project.warnings.push_back(missing + "; a sky stands in for it");
-            spec.kind = ChannelSpec::Kind::Pass;
-            stand_in = true;
-            file = "standin_sky.frag";
-            project.files[file] = kStandInSky;
           } else {
-            project.warnings.push_back(missing + "; value noise stands in for it");
+            project.warnings.push_back(missing + "; " + instead.what + " stands in for it");
             spec.kind = ChannelSpec::Kind::Pass;
             stand_in = true;
-            file = "standin_noise.frag";
-            project.files[file] = kStandInNoise;
+            file = instead.file;
+            project.files[file] = instead.text;
           }
         }
       } else {
