@@ -6,7 +6,6 @@
 //   frame_bench SCENE... > table.md
 // Prints one markdown row per scene: | name | ms | min ms | max ms |
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -18,9 +17,9 @@
 #include "core/data_paths.h"
 #include "core/renderer.h"
 #include "headless/egl_context.h"
+#include "frame_timing.h"
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
   constexpr int kWidth = 640, kHeight = 360, kWarmUp = 3, kFrames = 10, kRounds = 3;
@@ -56,20 +55,16 @@ int main(int argc, char** argv) {
   }
   for (int round = 0; round < kRounds; ++round) {
     for (Timed& t : scenes) {
-      std::vector<double> ms;
-      for (int i = 0; i < kWarmUp + kFrames; ++i) {
-        rm::FrameInputs in;
-        in.resolution = glm::vec3(kWidth, kHeight, 1.0f);
-        in.time = 1.0f + i / 60.0f;
-        in.frame = 60 + i;
-        in.mouse = glm::vec4(420, 300, 0, 0);
-        const auto start = Clock::now();
-        t.graph->draw(*t.project, in, {kWidth, kHeight}, target.framebuffer());
-        glFinish();
-        const double elapsed = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (i >= kWarmUp) ms.push_back(elapsed);
-      }
-      std::sort(ms.begin(), ms.end());
+      const std::vector<double> ms = bench::frame_times_ms(
+          [&](int i) {
+            rm::FrameInputs in;
+            in.resolution = glm::vec3(kWidth, kHeight, 1.0f);
+            in.time = 1.0f + i / 60.0f;
+            in.frame = 60 + i;
+            in.mouse = glm::vec4(420, 300, 0, 0);
+            t.graph->draw(*t.project, in, {kWidth, kHeight}, target.framebuffer());
+          },
+          kWarmUp, kFrames);
       t.best_median = std::min(t.best_median, ms[ms.size() / 2]);
       t.min = std::min(t.min, ms.front());
       t.max = std::max(t.max, ms.back());

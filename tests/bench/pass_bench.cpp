@@ -23,6 +23,7 @@
 #include "core/project.h"
 #include "core/renderer.h"
 #include "headless/egl_context.h"
+#include "frame_timing.h"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -42,16 +43,7 @@ rm::FrameInputs inputs(int i) {
 
 template <typename Draw>
 double median_ms(Draw draw) {
-  std::vector<double> ms;
-  for (int i = 0; i < kWarmUp + kFrames; ++i) {
-    glFinish();
-    const auto start = Clock::now();
-    draw(i);
-    glFinish();
-    if (i >= kWarmUp) ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
+  return bench::median_frame_ms(draw, kWarmUp, kFrames);
 }
 
 double median(std::vector<double> v) {

@@ -15,7 +15,6 @@
 //   - the interface alone over the kept picture: what a hover costs a
 //     scene that is not drawn again.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -34,26 +33,15 @@
 #include "window/kept_picture.h"
 #include "window/panels.h"
 #include "window/ui.h"
+#include "frame_timing.h"
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
 constexpr int kWidth = 640, kHeight = 360, kWarmUp = 3, kFrames = 10, kRounds = 5;
 
-double median_ms(const std::function<void(int)>& frame) {
-  std::vector<double> ms;
-  for (int i = 0; i < kWarmUp + kFrames; ++i) {
-    glFinish();
-    const auto start = Clock::now();
-    frame(i);
-    glFinish();
-    if (i >= kWarmUp) ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
+double median_ms(const std::function<void(int)>& frame) { return bench::median_frame_ms(frame, kWarmUp, kFrames); }
 
 }  // namespace
 
