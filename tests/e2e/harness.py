@@ -143,3 +143,14 @@ def count_pixels(ppm_path, region, test):
         row = data[3 * (y * width + x0):3 * (y * width + x0 + w)]
         count += sum(1 for i in range(0, len(row), 3) if test(row[i], row[i + 1], row[i + 2]))
     return count
+
+
+def first_frame_window(proc, title, stderr_path, timeout=20.0):
+    """The id of the window titled `title` once the program (run with -v) has
+    presented its first frame; None, with the program killed, if either
+    does not come within `timeout`."""
+    window = wait_for(lambda: xdotool("search", "--name", title), timeout=timeout)
+    if not window or not wait_for(lambda: "presented generation 1" in open(stderr_path).read(), timeout=timeout):
+        proc.kill()
+        return None
+    return window.splitlines()[0]

@@ -27,8 +27,8 @@ import sys
 import tempfile
 import time
 
-from harness import (capture_screen, check, count_pixels, cpu_seconds, mean_colour, metadata, open_window, save_by_rename,
-                     summary, take_screenshot, wait_for, xdotool)
+from harness import (capture_screen, check, count_pixels, cpu_seconds, first_frame_window, mean_colour, metadata,
+                     open_window, save_by_rename, summary, take_screenshot, wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 SIZE = (320, 180)
@@ -233,12 +233,10 @@ def project_session():
     err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
     proc = open_window([BINARY, os.path.join(work, "image.frag"), "--size", "200x120", "--shot-dir", work, "-v"],
                        out_path, err_path, work)
-    window = wait_for(lambda: xdotool("search", "--name", "image.frag"))
-    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
-        proc.kill()
+    window = first_frame_window(proc, "image.frag", err_path)
+    if not window:
         check("a project opens in the window", False, open(err_path).read())
         return
-    window = window.splitlines()[0]
 
     # A stroke along y = 40 (window coordinates, y down) from x = 40 to 160.
     xdotool("mousemove", "--window", window, 40, 40, "mousedown", 1)
@@ -312,12 +310,10 @@ def interface_session():
     err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
     proc = open_window([BINARY, scene, "--size", f"{UI_SIZE[0]}x{UI_SIZE[1]}", "--shot-dir", work, "-v"],
                        out_path, err_path, work)
-    window = wait_for(lambda: xdotool("search", "--name", "ui.frag"))
-    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
-        proc.kill()
+    window = first_frame_window(proc, "ui.frag", err_path)
+    if not window:
         check("the interface scene opens", False, open(err_path).read())
         return
-    window = window.splitlines()[0]
     screen = lambda name: capture_screen(window, os.path.join(work, name))
 
     def screen_after(name, settle=0.5):
@@ -417,12 +413,10 @@ def warning_session():
         f.write(WARNING_SCENE)
     err_path = os.path.join(work, "stderr.txt")
     proc = open_window([BINARY, scene, "--size", "480x270", "-v"], os.path.join(work, "stdout.txt"), err_path, work)
-    window = wait_for(lambda: xdotool("search", "--name", "warn.frag"))
-    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read()):
-        proc.kill()
+    window = first_frame_window(proc, "warn.frag", err_path)
+    if not window:
         check("the warning scene opens", False, open(err_path).read())
         return
-    window = window.splitlines()[0]
     time.sleep(0.5)
     yellow = lambda r, g, b: r > 200 and g > 150 and b < 120  # the warning's colour; the picture is grey
     bottom = (20, 150, 440, 110)
@@ -457,12 +451,10 @@ def knob_session():
     err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
     proc = open_window([BINARY, tori, "--size", f"{KNOB_SIZE[0]}x{KNOB_SIZE[1]}", "--controls", "--shot-dir", work,
                         "-v"], out_path, err_path, work)
-    window = wait_for(lambda: xdotool("search", "--name", "tori.frag"), timeout=40)
-    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read(), timeout=40):
-        proc.kill()
+    window = first_frame_window(proc, "tori.frag", err_path, timeout=40)
+    if not window:
         check("tori opens with its controls", False, open(err_path).read())
         return
-    window = window.splitlines()[0]
     xdotool("mousemove", "--window", window, *MAX_STEPS_SLIDER)
     time.sleep(0.5)
     xdotool("click", "--window", window, 1)
@@ -496,12 +488,10 @@ def idle_session(source, name, action=None):
         f.write(source)
     err_path = os.path.join(work, "stderr.txt")
     proc = open_window([BINARY, scene, "--size", "320x180", "-v"], os.path.join(work, "stdout.txt"), err_path, work)
-    window = wait_for(lambda: xdotool("search", "--name", name), timeout=40)
-    if not window or not wait_for(lambda: "presented generation 1" in open(err_path).read(), timeout=40):
-        proc.kill()
+    window = first_frame_window(proc, name, err_path, timeout=40)
+    if not window:
         print(f"     {name}: no window or no first frame; stderr: {open(err_path).read()!r}")
         return None, None
-    window = window.splitlines()[0]
     if action:
         action(window)
     time.sleep(1.0)
