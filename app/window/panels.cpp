@@ -50,12 +50,10 @@ void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
                kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_AlwaysAutoResize);
   ui.note_window_rect();
   ImGui::PushTextWrapPos(0.0f);
-  const int errors = count_errors(model.errors);
-  if (errors > 0) {
-    ImGui::TextColored(kErrorColour, "%d %s; %s", errors, errors == 1 ? "error" : "errors",
+  if (!model.errors.empty()) {
+    ImGui::TextColored(kErrorColour, "%zu %s; %s", model.errors.size(), model.errors.size() == 1 ? "error" : "errors",
                        model.has_picture ? "showing the last good picture" : "nothing to show yet");
-    for (const Diagnostic& d : model.errors)
-      if (d.severity == Severity::Error) ImGui::TextColored(kErrorColour, "%s", d.str().c_str());
+    for (const Diagnostic& d : model.errors) ImGui::TextColored(kErrorColour, "%s", d.str().c_str());
   }
   if (!model.warnings.empty()) {
     ImGui::PushFont(ui.small_font());

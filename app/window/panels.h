@@ -39,7 +39,7 @@ struct KnobControl {
 };
 
 struct UiModel {
-  Diagnostics errors;    // of the latest save that failed; empty once a save builds
+  Diagnostics errors;    // of the latest save that failed (errors only); empty once a save builds
   Diagnostics warnings;  // that do not block; shown until dismissed
   bool has_picture = false;  // a last good picture to show under the errors
   bool hud = false;

@@ -302,11 +302,9 @@ class WindowApp {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, width, height);
-    if (straight) {
-      // drawn in the window already
-    } else if (picture_.has_picture()) {
+    if (!straight && picture_.has_picture()) {
       picture_.present();
-    } else {
+    } else if (!straight) {  // the grey until a first good load
       glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT);
     }
