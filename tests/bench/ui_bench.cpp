@@ -1,7 +1,7 @@
 // Benchmark behind the "The window's interface" section of
 // docs/performance.md: what Dear ImGui and the kept picture cost a frame, in
 // a real GLFW window (run under xvfb-run) at 640x360.
-//   ui_bench SCENE...
+//   ui_bench SCENE...   (a project by its image.frag)
 // For each scene, alternating in 5 rounds of 10 frames after 3 warm-up
 // frames (the lowest round median of each, wall clock through glFinish and
 // the swap):
@@ -129,7 +129,9 @@ int main(int argc, char** argv) {
         best[4] = std::min(best[4], median_ms(kept(true, true)));
         best[5] = std::min(best[5], median_ms([&](int) { present(true); }));  // with the panel open
       }
-      std::printf("| %s |", path.stem().c_str());
+      // A project is named by its folder (examples/paint/image.frag: paint).
+      const fs::path name = path.stem() == "image" ? path.parent_path().filename() : path.stem();
+      std::printf("| %s |", name.c_str());
       for (double ms : best) std::printf(" %.2f ms |", ms);
       std::printf("\n");
     }
