@@ -1,0 +1,92 @@
+#include "core/frame_budget.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rm {
+
+double ScaleController::scale_of(int step) { return std::pow(2.0, -step / 4.0); }
+
+double ScaleController::full_frame_ms() const {
+  if (count_ == 0) return 0;
+  if (count_ == 1) return estimates_[0];
+  if (count_ == 2) return (estimates_[0] + estimates_[1]) / 2;
+  std::array<double, 3> e = estimates_;
+  std::sort(e.begin(), e.end());
+  return e[1];
+}
+
+void ScaleController::measured(double scale, double ms) {
+  estimates_[next_] = ms / (scale * scale);
+  next_ = (next_ + 1) % estimates_.size();
+  count_ = std::min(count_ + 1, 3);
+  const double full = full_frame_ms();
+  auto first_step_under = [&](double share, int from, int to) {
+    for (int k = from; k < to; ++k)
+      if (full * scale_of(k) * scale_of(k) <= share * budget_ms_) return k;
+    return to;
+  };
+  // Over budget where it is: down at once, as far as the estimate says.
+  const int hold = std::min(first_step_under(kHoldAt, 0, kSteps), kSteps - 1);
+  if (hold > step_) {
+    step_ = hold;
+    raise_votes_ = 0;
+    return;
+  }
+  // Room for a larger picture: up only when three frames in a row agree.
+  const int raise = first_step_under(kRaiseAt, 0, step_);
+  if (raise < step_ && ++raise_votes_ >= 3) {
+    step_ = raise;
+    raise_votes_ = 0;
+  } else if (raise >= step_) {
+    raise_votes_ = 0;
+  }
+}
+
+void ScaleController::forget() {
+  count_ = 0;
+  next_ = 0;
+  raise_votes_ = 0;
+}
+
+TilePlan::TilePlan(glm::ivec2 size, double tile_ms, double per_pixel_ms)
+    : size_(size), tile_ms_(tile_ms), per_pixel_ms_(per_pixel_ms), typical_ms_(per_pixel_ms), y_top_(size.y),
+      last_pixels_(per_pixel_ms > 0 ? double(size.x) * size.y : 0) {}
+
+glm::ivec4 TilePlan::next() const {
+  // Twice the last tile at most: the cost of the rows ahead is unknown, and
+  // cheap sky above must not send the whole scene below into one tile.
+  const double probe = double(kProbe) * kProbe;
+  const double pixels =
+      per_pixel_ms_ > 0 ? std::min(tile_ms_ / per_pixel_ms_, std::max(probe, 2.0 * last_pixels_)) : probe;
+  if (x_ == 0) {
+    const int rows = static_cast<int>(std::min(pixels / size_.x, double(size_.y)));
+    if (rows >= kProbe || rows >= y_top_) {  // whole rows
+      const int h = std::min(rows, y_top_);
+      return {0, y_top_ - h, size_.x, h};
+    }
+  }
+  // A band of rows, drawn in parts from the left.
+  const int band = x_ > 0 ? band_ : std::min(kProbe, y_top_);
+  const int width = std::clamp(static_cast<int>(pixels / band), std::min(kProbe, size_.x - x_), size_.x - x_);
+  return {x_, y_top_ - band, width, band};
+}
+
+void TilePlan::drawn(glm::ivec4 tile, double ms) {
+  drawn_ms_ += ms;
+  last_pixels_ = double(tile.z) * tile.w;
+  // The cost of this tile, but falling by at most half per tile, and never
+  // under the picture's average when that is known.
+  const double cost = std::max(ms, 1e-6) / last_pixels_;
+  per_pixel_ms_ = std::max({cost, per_pixel_ms_ / 2, typical_ms_});
+  if (tile.x + tile.z >= size_.x) {
+    x_ = 0;
+    band_ = 0;
+    y_top_ = tile.y;
+  } else {
+    x_ = tile.x + tile.z;
+    band_ = tile.w;
+  }
+}
+
+}  // namespace rm
