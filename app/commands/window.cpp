@@ -18,6 +18,13 @@ WindowCommand::WindowCommand(CLI::App& app) {
   app.add_flag("--no-ui", no_ui_, "Start with the interface hidden (F2 shows it)");
   app.add_flag("--hud", hud_, "Start with the HUD shown (F3 toggles it)");
   app.add_flag("--controls", controls_, "Start with the controls panel open");
+  app.add_option("--target-fps", target_fps_, "Frame budget: a changing picture is drawn at a lower resolution "
+                                              "(down to 1/8 per axis), and a heavy one in tiles, to hold this rate; "
+                                              "0 turns it off")
+      ->type_name("F")->check(CLI::Range(0.0, 1000.0));
+  app.add_option("--tile-limit", tile_limit_, "A shader whose smallest tile takes longer is reported too slow and "
+                                              "no longer drawn, until the next save")
+      ->type_name("SECONDS")->check(CLI::Range(0.001, 3600.0));
   channels_.add_to(app);
 }
 
@@ -42,6 +49,8 @@ int WindowCommand::run() const {
   opts.interface = !no_ui_;
   opts.hud = hud_;
   opts.controls = controls_;
+  opts.target_fps = target_fps_;
+  opts.tile_limit_s = tile_limit_;
   return run_window(opts);
 }
 

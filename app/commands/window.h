@@ -20,6 +20,8 @@ class WindowCommand {
   bool no_ui_ = false;
   bool hud_ = false;
   bool controls_ = false;
+  double target_fps_ = 30.0;
+  double tile_limit_ = 2.0;
   SourceFlags source_;
   ChannelFlags channels_;
 };

@@ -5,7 +5,7 @@
 
 namespace rm {
 
-double ScaleController::scale_of(int step) { return std::pow(2.0, -step / 4.0); }
+double ScaleController::scale_of(int step) { return std::pow(2.0, -step / 8.0); }
 
 double ScaleController::full_frame_ms() const {
   if (count_ == 0) return 0;

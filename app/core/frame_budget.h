@@ -12,15 +12,15 @@ namespace rm {
 // drawn. A frame's cost is taken to grow with its pixels, so each measured
 // frame gives an estimate of the full-size cost: ms / scale². The median of
 // the last three estimates (one slow frame does not move it) chooses a step
-// of a ladder 2^(-k/4). The scale goes down as soon as that median is over
+// of a ladder 2^(-k/8). The scale goes down as soon as that median is over
 // budget, and up only when three frames in a row say a larger step would
 // take at most kRaiseAt of the budget: the band between kRaiseAt and kHoldAt
 // is wider than one step, so it cannot oscillate between two.
 class ScaleController {
  public:
-  static constexpr int kSteps = 13;          // 1, 2^-1/4, ..., 1/8
+  static constexpr int kSteps = 25;          // 1, 2^-1/8, ..., 1/8: each step 19% more pixels
   static constexpr double kHoldAt = 0.9;     // of the budget: above it, go down
-  static constexpr double kRaiseAt = 0.6;    // of the budget: a larger step must fit under it
+  static constexpr double kRaiseAt = 0.65;   // of the budget: a larger step must fit under it
 
   explicit ScaleController(double budget_ms) : budget_ms_(budget_ms) {}
 

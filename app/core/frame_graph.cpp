@@ -235,9 +235,20 @@ void FrameGraph::draw_buffers(const Project& project, const FrameInputs& in, glm
 
 void FrameGraph::draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target) {
   draw_buffers(project, in, size);
+  draw_image(project, in, size, target, {0, 0, size.x, size.y});
+}
+
+void FrameGraph::draw_image(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target,
+                            glm::ivec4 region) {
   const size_t image = project.passes().size() - 1;
   glBindFramebuffer(GL_FRAMEBUFFER, target);
+  const bool part = region != glm::ivec4(0, 0, size.x, size.y);
+  if (part) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(region.x, region.y, region.z, region.w);
+  }
   timed(project, image, [&] { renderer_.draw(*project.image_program(), in, inputs_of(project, image), size); });
+  if (part) glDisable(GL_SCISSOR_TEST);
 }
 
 Image FrameGraph::render_image(const Project& project, const FrameInputs& in, glm::ivec2 size) const {

@@ -42,6 +42,10 @@ class FrameGraph {
   void draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target = 0);
   // Only the buffer passes: the frames before the one `render` writes.
   void draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size);
+  // Only the image pass, over `region` (x, y, width, height) of `target`'s
+  // (0,0,size) viewport: one tile of a picture drawn in parts. gl_FragCoord
+  // is the whole picture's, so every kind of shader can be drawn this way.
+  void draw_image(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target, glm::ivec4 region);
   // The image pass alone, read back (in tiles past the driver's limit),
   // reading the buffers as they are: a screenshot must not advance them.
   Image render_image(const Project& project, const FrameInputs& in, glm::ivec2 size) const;

@@ -1,6 +1,9 @@
-// The picture the graph drew last, kept in a texture of the window's size, so
-// that the interface can be drawn again over it (a hover, a HUD line) without
-// running the shader again: a scene that does not change is not re-rendered.
+// The picture the graph drew last, kept in a texture, so that the interface
+// can be drawn again over it (a hover, a HUD line) without running the shader
+// again: a scene that does not change is not re-rendered. The picture may be
+// smaller than the window (the frame budget's scale), and may be drawn in
+// tiles over several presents: until a tile is drawn, the previous picture
+// shows there.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -10,14 +13,15 @@ namespace rm {
 
 class KeptPicture {
  public:
-  // The framebuffer the graph draws the picture into, at `size` (reallocated
-  // when the size changes, which also forgets the picture).
+  // The framebuffer the graph draws the picture into, at `size`. A new size
+  // starts with the previous picture stretched over it.
   GLuint target(glm::ivec2 size);
   bool has_picture() const { return drawn_; }
   void mark_drawn() { drawn_ = true; }
   void forget() { drawn_ = false; }  // the picture moved on without it
-  // Copies the picture to the window's framebuffer (0), at the same size.
-  void present() const;
+  // Copies the picture over the window's framebuffer (0) of `window` pixels,
+  // stretched (bilinear) when it is smaller.
+  void present(glm::ivec2 window) const;
 
  private:
   glm::ivec2 size_{0};

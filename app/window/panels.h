@@ -29,6 +29,8 @@ struct HudFigures {
   int frame = 0;
   bool paused = false;
   bool animated = false;  // false: a static picture, drawn only on change
+  double scale = 1;       // the frame budget's, per axis
+  int tiles = 1;          // the picture was drawn in this many tiles
   std::vector<std::pair<std::string, double>> passes;  // name, GPU ms, in draw order
 };
 

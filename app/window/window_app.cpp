@@ -15,6 +15,7 @@
 
 #include "core/capture.h"
 #include "core/channels.h"
+#include "core/frame_budget.h"
 #include "core/frame_graph.h"
 #include "core/project.h"
 #include "core/gl_census.h"
@@ -73,7 +74,8 @@ class WindowApp {
   WindowApp(const WindowOptions& options, GLFWwindow* window)
       : options_(options), window_(window), source_(options.source),
         project_(project_files(options.scene, options.media), options.source, options.channels),
-        watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window) {
+        watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window),
+        budget_(options.target_fps > 0 ? 1000.0 / options.target_fps : 0.0) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
     model_.values = &inputs_.uniforms;
     model_.hud = options.hud;
@@ -94,10 +96,12 @@ class WindowApp {
     while (!glfwWindowShouldClose(window_) && !quit_) {
       // A picture that cannot change is drawn once: then sleep until an event,
       // waking every 20 ms to look at the watcher (a save shows up that fast).
-      if (redraw_needed() || ui_frames_ > 0) glfwPollEvents();
+      // A picture drawn in tiles comes back here between slices of tiles.
+      auto busy = [&] { return redraw_needed() || ui_frames_ > 0 || drawing_; };
+      if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
-      if (redraw_needed() || ui_frames_ > 0) frame(redraw_needed());
+      if (busy() && !quit_) frame(redraw_needed());
     }
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
@@ -186,6 +190,12 @@ class WindowApp {
     if (status == ReloadStatus::Swapped) {
       take_user_uniforms();
       take_knobs();
+      // A new program: the picture in progress is the old one's, and what
+      // the new one costs is unknown until a probe tile has measured it.
+      drawing_.reset();
+      budget_.forget();
+      program_drawn_ = false;
+      too_slow_ = false;
     }
     dirty_ = true;  // a new program, or the stale badge and title
     ui_event();
@@ -297,13 +307,16 @@ class WindowApp {
       ui_frames_ = 0;
       return;
     }
-    bool straight = false;
-    if (redraw || (ui_.visible() && !picture_.has_picture())) straight = draw_picture(width, height);
+    // A picture drawn because something changed once gives way to a newer
+    // one; a moving one is finished first. A new window size starts over.
+    if (drawing_ && (drawing_->window != glm::ivec2(width, height) || (drawing_->resting && redraw))) drawing_.reset();
+    if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height);
+    const bool straight = drawing_ && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, width, height);
     if (!straight && picture_.has_picture()) {
-      picture_.present();
+      picture_.present({width, height});
     } else if (!straight) {  // the grey until a first good load
       glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -334,8 +347,12 @@ class WindowApp {
     apply(changes);
   }
 
-  // Returns whether the scene went straight into the window (interface hidden).
-  bool draw_picture(int width, int height) {
+  // Starts the next picture: fixes its inputs, advances the clock, draws the
+  // buffer passes, and plans the image pass's tiles. A moving picture (the
+  // clock runs, the left button is held) is drawn at the budget's scale; one
+  // at rest at full size. Feedback projects are always drawn at full size:
+  // their buffers carry pictures from frame to frame.
+  void start_picture(int width, int height) {
     const float delta = clock_.tick();
     inputs_.resolution = glm::vec3(width, height, 1.0f);
     inputs_.time = static_cast<float>(clock_.time());
@@ -345,25 +362,103 @@ class WindowApp {
     inputs_.mouse = mouse_.imouse();
     inputs_.cursor = mouse_.cursor();
     inputs_.date = date_of(std::chrono::system_clock::now());
+    if (!project_.ready() || too_slow_) return;  // the grey, or the picture as it is
 
-    if (!project_.ready()) return false;  // the grey until a first good load
-    // With the HUD or the knobs shown, every pass is timed on the GPU, and on
-    // the CPU's clock through glFinish (llvmpipe's GPU figure misses its threads).
+    const bool moving = (use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f;
+    const bool budget_on = budget_.budget_ms() > 0;
+    const double scale = moving && budget_on && !project_.has_feedback() ? budget_.scale() : 1.0;
+    const glm::ivec2 window(width, height);
+    const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(window) * scale)));
+    const glm::vec2 ratio = glm::vec2(size) / glm::vec2(window);
+    FrameInputs in = inputs_;
+    in.resolution = glm::vec3(size, 1.0f);
+    in.mouse *= glm::vec4(ratio, ratio);
+    in.cursor *= ratio;
+
     const bool timed = ui_.visible() && (model_.hud || !model_.knobs.empty());
     graph_.time_passes(timed, true);
-    const bool straight = !ui_.visible();
-    if (straight) picture_.forget();
-    graph_.draw(project_, inputs_, {width, height}, straight ? 0 : picture_.target({width, height}));
-    if (!straight) picture_.mark_drawn();
-    if (timed) take_figures(width, height);
+    const long long start = steady_ns();
+    graph_.draw_buffers(project_, in, size);
+    glFinish();  // the buffers' time is the picture's too
+    // Tiles of about the budget (with room for the present), from the cost
+    // per pixel the last pictures measured; unknown after a reload.
+    const double per_pixel =
+        !budget_on ? 1e-12 : program_drawn_ ? budget_.full_frame_ms() / (double(width) * height) : 0.0;
+    const double tile_ms = budget_on ? 0.8 * budget_.budget_ms() : 1e12;
+    drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
+                             (steady_ns() - start) / 1e6});
+    refine_due_ = scale < 1.0;  // at rest, the picture is drawn again at full size
+
     ++frames_drawn_;
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
     dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
     mouse_.end_frame();
     graph_.keyboard().end_frame();
     if (!clock_.paused()) clock_.next_frame();
-    if (delta < 0.25f) frame_ms_ = 0.9 * frame_ms_ + 0.1 * delta * 1000.0;  // not across idle waits
+  }
+
+  // Draws tiles of the picture in progress until one slice of the budget is
+  // spent, so that the loop reads input between slices. The first tile of a
+  // picture that fits the budget is the whole picture; at full size with the
+  // interface hidden, it goes straight into the window (returns true).
+  bool continue_picture() {
+    Picture& p = *drawing_;
+    const long long slice_start = steady_ns();
+    const double slice_ms = budget_.budget_ms() > 0 ? budget_.budget_ms() : 1e12;
+    bool straight = false;
+    do {
+      const glm::ivec4 tile = p.plan.next();
+      straight = p.tiles == 0 && tile == glm::ivec4(0, 0, p.size) && p.scale == 1.0 && !ui_.visible();
+      if (straight) picture_.forget();
+      const GLuint target = straight ? 0 : picture_.target(p.size);
+      const long long start = steady_ns();
+      graph_.draw_image(project_, p.inputs, p.size, target, tile);
+      glFinish();  // the tile is done: input is read before the next
+      const double ms = (steady_ns() - start) / 1e6;
+      p.plan.drawn(tile, ms);
+      ++p.tiles;
+      if (!straight) picture_.mark_drawn();
+      // The first draw of a program also compiles it in the driver: not a measure of the shader.
+      const bool probe = tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe;
+      if (probe && program_drawn_ && ms > options_.tile_limit_s * 1000.0) {
+        report_too_slow(tile, ms);
+        return false;
+      }
+      if (!program_drawn_) p.compile_ms = ms;
+      program_drawn_ = true;
+    } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
+    if (p.plan.done()) finish_picture();
     return straight;
+  }
+
+  void finish_picture() {
+    const Picture& p = *drawing_;
+    frame_ms_ = p.buffers_ms + p.plan.drawn_ms() - p.compile_ms;
+    budget_.measured(p.scale, frame_ms_);
+    model_.figures.scale = p.scale;
+    model_.figures.tiles = p.tiles;
+    if (ui_.visible() && (model_.hud || !model_.knobs.empty()) && p.tiles == 1) take_figures(p.window.x, p.window.y);
+    if (options_.verbose)
+      std::cerr << "raymarching: picture " << p.size.x << "x" << p.size.y << " scale " << p.scale << " in "
+                << p.tiles << (p.tiles == 1 ? " tile, " : " tiles, ") << frame_ms_ << " ms\n";
+    drawing_.reset();
+  }
+
+  // The watchdog: a shader whose smallest tile takes longer than the limit
+  // is not drawn again until a save replaces it; the picture stays as it is.
+  void report_too_slow(glm::ivec4 tile, double ms) {
+    char message[200];
+    std::snprintf(message, sizeof message,
+                  "too slow: a %dx%d tile took %.2f s (--tile-limit %g s); not drawn again until the next save",
+                  tile.z, tile.w, ms / 1000.0, options_.tile_limit_s);
+    const fs::path file = project_.passes().back().file;
+    std::cerr << file.string() << ": error: " << message << '\n';
+    model_.errors.push_back({Severity::Error, file.string(), 0, 0, message});
+    ++errors_;
+    too_slow_ = true;
+    drawing_.reset();
+    ui_event();
+    update_title(true);
   }
 
   void take_figures(int width, int height) {
@@ -408,10 +503,19 @@ class WindowApp {
     if (errors_ > 0) {
       title += std::to_string(errors_) + (errors_ == 1 ? " error" : " errors");
       title += project_.ready() ? ", showing last good" : ", nothing to show yet";
+    } else if (drawing_ && drawing_->tiles > 0) {  // a picture in tiles, still coming
+      title += "drawing in tiles";
     } else {
-      char buf[32];
+      // The last picture's own time, through glFinish: not an average, so it
+      // does not drift while nothing is drawn.
+      char buf[64];
       std::snprintf(buf, sizeof buf, "%.1f ms", frame_ms_);
       title += buf;
+      if (model_.figures.scale < 1.0) {
+        std::snprintf(buf, sizeof buf, " at scale %.2f", model_.figures.scale);
+        title += buf;
+      }
+      if (model_.figures.tiles > 1) title += " in " + std::to_string(model_.figures.tiles) + " tiles";
     }
     if (view_ != View::Picture) title += std::string(" (view: ") + to_string(view_) + ")";
     if (clock_.paused()) title += " (paused)";
@@ -473,7 +577,8 @@ class WindowApp {
   // otherwise only after something it reads changed (or a screenshot is due).
   // Never while minimised: nobody sees it.
   bool redraw_needed() const {
-    return shot_requested_ || (!iconified_ && (dirty_ || (use_.time && !clock_.paused())));
+    return shot_requested_ ||
+           (!iconified_ && !too_slow_ && (dirty_ || refine_due_ || (use_.time && !clock_.paused())));
   }
 
   const WindowOptions& options_;
@@ -503,7 +608,27 @@ class WindowApp {
   View view_ = View::Picture;
   long frames_drawn_ = 0;
   bool dirty_ = true;  // something it reads changed since the last frame
-  double frame_ms_ = 16.7;
+  double frame_ms_ = 0;  // the last picture's, measured
+
+  // A picture being drawn: its inputs are fixed when it starts, and it is
+  // drawn whole or, when it would not fit the budget, tile by tile over
+  // several turns of the event loop.
+  struct Picture {
+    FrameInputs inputs;  // at the picture's size
+    glm::ivec2 window;   // the framebuffer it is for
+    glm::ivec2 size;     // window * scale
+    double scale = 1;
+    bool resting = false;  // not moving: a newer picture replaces it
+    TilePlan plan;
+    double buffers_ms = 0;
+    int tiles = 0;  // drawn so far
+    double compile_ms = 0;  // a new program's first tile, which the driver compiles it in: not the picture's cost
+  };
+  ScaleController budget_;
+  std::optional<Picture> drawing_;
+  bool refine_due_ = false;     // the last picture was scaled down: at rest, draw it at full size
+  bool program_drawn_ = false;  // the current program has drawn a tile (the driver has compiled it)
+  bool too_slow_ = false;       // the watchdog stopped the current program
   std::chrono::steady_clock::time_point title_updated_{};
   int windowed_[4] = {0, 0, 800, 450};
 };

@@ -27,6 +27,8 @@ struct WindowOptions {
   bool interface = true;              // the interface shown at start (F2 toggles)
   bool hud = false;                   // the HUD shown at start (F3 toggles)
   bool controls = false;              // the controls panel open at start
+  double target_fps = 30;             // the frame budget; 0: off (every picture whole, at full size)
+  double tile_limit_s = 2;            // a smallest tile slower than this: the shader is too slow
 };
 
 // Runs until the window closes; returns the process exit status.

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
       auto present = [&](bool interface) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, kWidth, kHeight);
-        picture.present();
+        picture.present(size);
         if (interface) {
           ui.begin();
           rm::draw_panels(ui, model);
