@@ -154,3 +154,18 @@ def first_frame_window(proc, title, stderr_path, timeout=20.0):
         proc.kill()
         return None
     return window.splitlines()[0]
+
+
+def pixels_over(a, b, threshold, work, region=None):
+    """How many pixels of images a and b differ by more than `threshold` in
+    of R, G and B (the screen has no alpha), over `region` (x, y, w, h) or
+    the whole picture."""
+    cut = ["--cut", "{}x{}+{}+{}".format(*region[2:], *region[:2])] if region else []
+    rgb = []
+    for image, name in ((a, "rgb_a.png"), (b, "rgb_b.png")):
+        rgb.append(os.path.join(work, name))
+        subprocess.run(["oiiotool", image, "--ch", "R,G,B", *cut, "-o", rgb[-1]], check=True)
+    a, b = rgb
+    out = subprocess.run(["idiff", "-fail", str(threshold), a, b], capture_output=True, text=True).stdout
+    found = re.search(r"(\d+) pixels \([0-9.]+%\) over " + re.escape(f"{threshold:g}"), out)
+    return int(found.group(1)) if found else (0 if "PASS" in out else None)

@@ -28,7 +28,7 @@ import tempfile
 import time
 
 from harness import (capture_screen, check, count_pixels, cpu_seconds, first_frame_window, mean_colour, metadata,
-                     open_window, save_by_rename, summary, take_screenshot, wait_for, xdotool)
+                     open_window, pixels_over, save_by_rename, summary, take_screenshot, wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 SIZE = (320, 180)
@@ -285,21 +285,6 @@ PANEL_X = UI_SIZE[0] - 10 - 330
 PANEL_ARROW = (PANEL_X + 10, 19)
 PAUSE_BUTTON = (PANEL_X + 29, 69)
 GAIN_SLIDER = (PANEL_X + 8, PANEL_X + 172, 161)  # left end, right end, y
-
-
-def pixels_over(a, b, threshold, work, region=None):
-    """How many pixels of images a and b differ by more than `threshold` in
-    of R, G and B (the screen has no alpha), over `region` (x, y, w, h) or
-    the whole picture."""
-    cut = ["--cut", "{}x{}+{}+{}".format(*region[2:], *region[:2])] if region else []
-    rgb = []
-    for image, name in ((a, "rgb_a.png"), (b, "rgb_b.png")):
-        rgb.append(os.path.join(work, name))
-        subprocess.run(["oiiotool", image, "--ch", "R,G,B", *cut, "-o", rgb[-1]], check=True)
-    a, b = rgb
-    out = subprocess.run(["idiff", "-fail", str(threshold), a, b], capture_output=True, text=True).stdout
-    found = re.search(r"(\d+) pixels \([0-9.]+%\) over " + re.escape(f"{threshold:g}"), out)
-    return int(found.group(1)) if found else (0 if "PASS" in out else None)
 
 
 def interface_session():

@@ -51,7 +51,7 @@ TEST(ScaleController, AHeavySceneConvergesWithinAFewFramesAndHolds) {
   EXPECT_LE(changes(scales, 2), 0) << "the scale moved after it had converged";
   // And it is not needlessly small: the next step up would be over the budget's raise line.
   const double s = scales.back();
-  EXPECT_GT(240.0 * std::pow(s * std::pow(2.0, 0.25), 2), ScaleController::kRaiseAt * kBudget);
+  EXPECT_GT(240.0 * std::pow(s * std::pow(2.0, 0.125), 2), ScaleController::kRaiseAt * kBudget);
 }
 
 TEST(ScaleController, ACheapSceneStaysAtFullSize) {

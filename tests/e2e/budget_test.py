@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""The frame budget end to end, in a real window under Xvfb driven by xdotool.
+Run as: xvfb-run -a python3 budget_test.py RAYMARCHING
+
+Checks: a shader of half a million loop steps per pixel (about half a
+minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
+a save that replaces it shows within 1 s; a smallest tile slower than
+--tile-limit is reported as too slow with the file, and the window keeps
+going; an animated scene over budget is drawn at a lower scale, shown in the
+title, and once paused it is drawn again at full size, which F12 and
+`render` agree on.
+"""
+import os
+import re
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+
+from harness import (capture_screen, check, first_frame_window, metadata, open_window, pixels_over, save_by_rename,
+                     summary, take_screenshot, wait_for, xdotool)
+
+BINARY = os.path.abspath(sys.argv[1])
+
+# About half a million steps per pixel: a 16x16 probe tile takes a few tenths
+# of a second on llvmpipe, the whole 320x180 picture about half a minute.
+# llvmpipe ends any loop after 65535 iterations, so each does eight steps.
+HEAVY = """// heavy on purpose
+#define STEP a = fract(a * 1.37 + sin(a + float(i) * 0.001 + f.x * 0.01));
+void mainImage(out vec4 c, in vec2 f) {
+  float a = 0.0;
+  for (int i = 0; i < 60000; ++i) { STEP STEP STEP STEP STEP STEP STEP STEP }
+  c = vec4(a, f / iResolution.xy, 1.0);
+}
+"""
+LIGHT = "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, 0.5, 1.0); }\n"
+# Animated, and heavy enough at 320x180 that a 60 fps budget needs a lower scale.
+ANIMATED = """// animated, a few ms a picture
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  float a = 0.0;
+  for (int i = 0; i < 400; ++i) a += sin(uv.x * 10.0 + float(i) * 0.01 + iTime) * 0.0025;
+  c = vec4(uv, 0.5 + a, 1.0);
+}
+"""
+
+
+def start(work, name, source, *args):
+    scene = os.path.join(work, name)
+    with open(scene, "w") as f:
+        f.write(source)
+    err = os.path.join(work, name + ".stderr")
+    out = os.path.join(work, name + ".stdout")
+    proc = open_window([BINARY, scene, "--size", "320x180", "-v", *args], out, err, work)
+    return scene, proc, err, out
+
+
+def heavy_session(work):
+    scene, proc, err, _ = start(work, "heavy.frag", HEAVY)
+    window = first_frame_window(proc, "heavy.frag", err, timeout=30)
+    check("a heavy shader's window opens and shows its first tiles", bool(window), open(err).read() if not window else "")
+    if not window:
+        return
+    # Tiles keep coming: the title says so, and the picture is not finished.
+    check("the title says the picture is drawn in tiles",
+          wait_for(lambda: "drawing in tiles" in xdotool("getwindowname", window), timeout=10),
+          xdotool("getwindowname", window))
+    time.sleep(1.0)
+    pressed = time.monotonic()
+    xdotool("key", "--window", window, "q")
+    try:
+        status = proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    took = time.monotonic() - pressed
+    print(f"     Q to exit: {took:.3f} s")
+    check("Q quits a heavy shader within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
+    check("... before its picture was finished", "picture 320x180" not in open(err).read(), open(err).read()[-500:])
+
+
+def heavy_fixed_by_a_save(work):
+    scene, proc, err, _ = start(work, "fixme.frag", HEAVY)
+    window = first_frame_window(proc, "fixme.frag", err, timeout=30)
+    check("a second heavy window opens", bool(window))
+    if not window:
+        return
+    time.sleep(1.0)
+    saved = time.monotonic()
+    save_by_rename(scene, LIGHT)
+    shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=10, step=0.01)
+    took = time.monotonic() - saved
+    print(f"     save to the new program's first present: {took:.3f} s")
+    check("a save that replaces a heavy shader shows within 1 s", shown and took < 1.0, f"{took:.3f} s")
+    check("... and its picture is drawn whole",
+          wait_for(lambda: re.search(r"picture 320x180 scale 1 in \d+ tiles?", open(err).read())), open(err).read()[-500:])
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
+def too_slow_session(work):
+    scene, proc, err, _ = start(work, "slow.frag", HEAVY, "--tile-limit", "0.02")
+    window = first_frame_window(proc, "slow.frag", err, timeout=30)
+    check("a window with --tile-limit opens", bool(window))
+    if not window:
+        return
+    line = wait_for(lambda: re.search(re.escape(scene) + r": error: too slow: a 16x16 tile took [0-9.]+ s "
+                                      r"\(--tile-limit 0\.02 s\)", open(err).read()), timeout=10)
+    check("a smallest tile over --tile-limit is reported too slow, with the file", bool(line), open(err).read()[-800:])
+    check("the title counts it as an error",
+          wait_for(lambda: "1 error" in xdotool("getwindowname", window)), xdotool("getwindowname", window))
+    # The window still answers, and a save replaces the shader.
+    save_by_rename(scene, LIGHT)
+    check("a save after the watchdog draws the new shader",
+          wait_for(lambda: "presented generation 2" in open(err).read()), open(err).read()[-500:])
+    check("... and clears the error", wait_for(lambda: "error" not in xdotool("getwindowname", window)),
+          xdotool("getwindowname", window))
+    xdotool("key", "--window", window, "q")
+    check("and Q quits", proc.wait(timeout=10) == 0)
+
+
+def scaled_then_refined(work):
+    # A budget of 1000 fps: even this light scene is over it at full size.
+    scene, proc, err, out = start(work, "animated.frag", ANIMATED, "--target-fps", "1000", "--shot-dir", work, "--no-ui")
+    window = first_frame_window(proc, "animated.frag", err, timeout=30)
+    check("an animated window opens", bool(window))
+    if not window:
+        return
+    scaled = wait_for(lambda: re.search(r"picture (\d+)x(\d+) scale 0\.\d+ in 1 tile", open(err).read()), timeout=10)
+    check("a moving picture over budget is drawn at a lower scale", bool(scaled), open(err).read()[-500:])
+    check("the title shows the scale",
+          wait_for(lambda: re.search(r"ms at scale 0\.\d\d", xdotool("getwindowname", window))),
+          xdotool("getwindowname", window))
+    xdotool("key", "--window", window, "space")
+    marker = len(open(err).read())
+    check("paused, it is drawn once more at full size",
+          wait_for(lambda: re.search(r"picture 320x180 scale 1 in", open(err).read()[marker:])),
+          open(err).read()[marker:][-500:])
+    time.sleep(0.3)
+    rested = capture_screen(window, os.path.join(work, "rested.ppm"))
+    shot = take_screenshot(window, out)
+    check("F12 of the rested picture writes a shot", bool(shot))
+    if shot and rested:
+        over = pixels_over(rested, shot, 1.5 / 255, work)
+        check("the rested picture on screen is the full-size one F12 takes", over == 0, over)
+        command = shlex.split(metadata(shot)["ImageDescription"])
+        reference = os.path.join(work, "reference.png")
+        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
+        diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
+                              capture_output=True, text=True)
+        check("... which `render` of its command line matches", diff.returncode == 0, diff.stdout)
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
+if __name__ == "__main__":
+    work = tempfile.mkdtemp(prefix="rm-e2e-budget-")
+    try:
+        heavy_session(work)
+        heavy_fixed_by_a_save(work)
+        too_slow_session(work)
+        scaled_then_refined(work)
+    finally:
+        status = summary()
+    sys.exit(status)
