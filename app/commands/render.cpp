@@ -24,6 +24,8 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--view", view_, "A debug view instead of the picture: map() calls per pixel as a heatmap, "
                                 "normals, depth, or NaN/Inf pixels in magenta")
       ->check(CLI::IsMember({"steps", "normals", "depth", "nan"}));
+  c.add_option("--timeout", timeout_, "Stop a render that runs longer, with exit status 124; nothing it wrote "
+                                      "is left")->type_name("SECONDS")->check(CLI::PositiveNumber);
   channels_.add_to(c);
 }
 
@@ -45,6 +47,7 @@ int RenderCommand::run() const {
   req.channels = channels_.get();
   req.media = media_;
   req.sets = sets_;
+  req.timeout = timeout_;
   return render_command(req);
 }
 

@@ -21,6 +21,7 @@ class RenderCommand {
   std::vector<std::string> sets_;  // --set NAME=VALUE
   int frame_ = -1, frames_ = 0;
   double fps_ = 60.0;
+  double timeout_ = 0;
   SourceFlags source_;
   ChannelFlags channels_;
   std::string media_;

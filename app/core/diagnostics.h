@@ -7,7 +7,8 @@
 namespace rm {
 
 // Exit status of every command, as compilers use it.
-enum ExitCode : int { kExitOk = 0, kExitShaderError = 1, kExitUsage = 2 };
+// 124: a run stopped by its time limit, as timeout(1) exits.
+enum ExitCode : int { kExitOk = 0, kExitShaderError = 1, kExitUsage = 2, kExitTimeout = 124 };
 
 enum class Severity { Error, Warning };
 

@@ -15,6 +15,7 @@
 #include "core/renderer.h"
 #include "core/user_uniforms.h"
 #include "core/scene.h"
+#include "headless/deadline.h"
 #include "headless/egl_context.h"
 
 namespace rm {
@@ -82,6 +83,9 @@ int render_command(const RenderRequest& req) {
       if (auto problem = view_problem(source, req.view))
         return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
 
+  char limit[64];
+  std::snprintf(limit, sizeof limit, "--timeout %g", req.timeout);
+  Deadline deadline(req.timeout, limit);
   std::string error;
   auto context = EglContext::create(&error);
   if (!context) return fail(error, kExitUsage);
@@ -135,7 +139,10 @@ int render_command(const RenderRequest& req) {
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
     Image image = graph.render_frame(project, in, req.size);
     const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
-    if (!write_image(out, image, frame_metadata(req.scene, req.source, in), Overwrite::Replace, &error)) return fail(error, kExitUsage);
+    const bool written = deadline.write(out, [&] {
+      return write_image(out, image, frame_metadata(req.scene, req.source, in), Overwrite::Replace, &error).has_value();
+    });
+    if (!written) return fail(error, kExitUsage);
     if (sequence || warm_up) show_progress(total - count + i + 1, total);
   }
   return kExitOk;

@@ -29,6 +29,7 @@ struct RenderRequest {
   std::optional<std::chrono::system_clock::time_point> date;  // default: now
   View view = View::Picture;  // --view: a debug view instead of the picture
   std::vector<std::string> sets;  // --set NAME=VALUE: the shader's own uniforms
+  double timeout = 0;  // seconds; 0: none (see headless/deadline)
 };
 
 int render_command(const RenderRequest& request);

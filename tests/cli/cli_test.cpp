@@ -2,8 +2,11 @@
 // stderr that names the problem and the path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "support.h"
 
@@ -220,6 +223,7 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + (dir_ / "a_file/o.png").string(), "is not a directory"},
       {"render " + g + " -o " + out + " -D 9bad=1", "-D '9bad=1'"},
       {"render " + g, "--output"},
+      {"render " + g + " -o " + out + " --timeout 0", "--timeout"},
   };
   for (const auto& [args, expected] : cases) {
     test::Outcome r = run(args);
@@ -229,6 +233,51 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
     EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A shader of half a million loop steps per pixel: tens of seconds at
+// 320x180 on llvmpipe, which ends any loop after 65535 iterations, so each
+// does eight steps.
+constexpr const char* kHeavy =
+    "#define STEP a = fract(a * 1.37 + sin(a + float(i) * 0.001 + f.x * 0.01));\n"
+    "void mainImage(out vec4 c, in vec2 f) {\n  float a = 0.0;\n"
+    "  for (int i = 0; i < STEPS; ++i) { STEP STEP STEP STEP STEP STEP STEP STEP }\n"
+    "  c = vec4(a, f / iResolution.xy, 1.0);\n}\n";
+
+std::vector<std::string> names_in(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// render --timeout: a render that runs too long ends at the limit with exit
+// status 124, one line, and no file left (no output, no temporary); the
+// frames a sequence had written are removed. One that fits is untouched.
+TEST_F(Cli, RenderTimeoutEndsALongRenderWith124AndLeavesNothing) {
+  write_file(dir_ / "heavy.frag", "#define STEPS 60000\n" + std::string(kHeavy));
+  test::Outcome r = run("render " + (dir_ / "heavy.frag").string() + " -o " + (dir_ / "out.png").string() +
+                        " --size 320x180 --timeout 2");
+  EXPECT_EQ(r.status, 124) << r.err;
+  EXPECT_EQ(r.err, "raymarching: error: the render ran past --timeout 2 s and was stopped; nothing was written\n");
+  EXPECT_GE(r.seconds, 2.0);
+  EXPECT_LT(r.seconds, 5.0) << "the limit is 2 s";
+  EXPECT_EQ(names_in(dir_.path()), std::vector<std::string>{"heavy.frag"});
+
+  // A sequence of frames of about a tenth of a second each.
+  test::TempDir seq;
+  write_file(seq / "light.frag", "#define STEPS 300\n" + std::string(kHeavy));
+  r = run("render " + (seq / "light.frag").string() + " -o " + (seq / "f%03d.png").string() +
+          " --size 320x180 --frames 1000 --timeout 2");
+  EXPECT_EQ(r.status, 124) << r.err;
+  EXPECT_EQ(r.err, "raymarching: error: the render ran past --timeout 2 s and was stopped; the frames it wrote are "
+                   "removed\n");
+  EXPECT_EQ(names_in(seq.path()), std::vector<std::string>{"light.frag"});
+
+  r = run("render " + (seq / "light.frag").string() + " -o " + (seq / "one.png").string() +
+          " --size 32x18 --timeout 60");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(seq / "one.png"));
 }
 
 // Bad shader files: each is exit 1 (a shader problem) or 2 (I/O), with one

@@ -24,7 +24,9 @@ std::map<std::string, std::string> knobs_of(const std::string& text, std::vector
   EXPECT_TRUE(source.ok()) << join(source.errors);
   std::map<std::string, std::string> out;
   std::string active;
-  if (from_validation) EXPECT_TRUE(validate(source, &active, knob_probes()).empty());
+  if (from_validation) {
+    EXPECT_TRUE(validate(source, &active, knob_probes()).empty());
+  }
   for (const KnobValue& k : knob_values(source, from_validation ? &active : nullptr)) out[k.knob->name] = k.value;
   return out;
 }

@@ -1,0 +1,47 @@
+#include "headless/deadline.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/diagnostics.h"
+
+namespace rm {
+
+Deadline::Deadline(double seconds, std::string option) : option_(std::move(option)) {
+  if (seconds > 0) thread_ = std::thread([this, seconds] { watch(seconds); });
+}
+
+Deadline::~Deadline() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard lock(mutex_);
+    done_ = true;
+  }
+  ended_.notify_all();
+  thread_.join();
+}
+
+bool Deadline::write(const std::filesystem::path& path, const std::function<bool()>& write) {
+  std::lock_guard lock(mutex_);
+  const bool ok = write();
+  if (ok) written_.push_back(path);
+  return ok;
+}
+
+void Deadline::watch(double seconds) {
+  std::unique_lock lock(mutex_);
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  if (ended_.wait_until(lock, limit, [this] { return done_; })) return;
+  // The lock is ours: no write is under way, and none starts.
+  for (const auto& path : written_) {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+  std::fprintf(stderr, "raymarching: error: the render ran past %s s and was stopped; %s\n", option_.c_str(),
+               written_.empty() ? "nothing was written" : "the frames it wrote are removed");
+  std::fflush(stderr);
+  std::_Exit(kExitTimeout);  // the GL thread may be inside a draw: no destructors
+}
+
+}  // namespace rm

@@ -1,0 +1,40 @@
+// A time limit for a headless run (`render --timeout`). A draw call cannot be
+// interrupted, so when the limit passes a watch thread ends the process: one
+// line on stderr, every file the run wrote removed, and exit status
+// kExitTimeout. A file being written is finished first, so no half file is
+// left under any name.
+#pragma once
+#include <condition_variable>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace rm {
+
+class Deadline {
+ public:
+  // seconds <= 0: no limit. `option` names it in the message ("--timeout 2").
+  Deadline(double seconds, std::string option);
+  ~Deadline();  // the run ended in time: stops the watch
+  Deadline(const Deadline&) = delete;
+  Deadline& operator=(const Deadline&) = delete;
+
+  // Runs `write`, which writes `path`, whole: the limit waits for it. The
+  // file is removed if the limit passes later in the run.
+  bool write(const std::filesystem::path& path, const std::function<bool()>& write);
+
+ private:
+  void watch(double seconds);
+
+  std::string option_;
+  std::mutex mutex_;  // held by a write, and by the watch when it ends the run
+  std::condition_variable ended_;
+  bool done_ = false;
+  std::vector<std::filesystem::path> written_;
+  std::thread thread_;
+};
+
+}  // namespace rm
