@@ -424,7 +424,7 @@ class WindowApp {
         report_too_slow(tile, ms);
         return false;
       }
-      if (!program_drawn_) p.compile_ms = ms;
+      if (!program_drawn_ && probe) p.compile_ms = ms;
       program_drawn_ = true;
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
     if (p.plan.done()) finish_picture();
@@ -440,7 +440,8 @@ class WindowApp {
     if (ui_.visible() && (model_.hud || !model_.knobs.empty()) && p.tiles == 1) take_figures(p.window.x, p.window.y);
     if (options_.verbose)
       std::cerr << "raymarching: picture " << p.size.x << "x" << p.size.y << " scale " << p.scale << " in "
-                << p.tiles << (p.tiles == 1 ? " tile, " : " tiles, ") << frame_ms_ << " ms\n";
+                << p.tiles << (p.tiles == 1 ? " tile, " : " tiles, ") << frame_ms_ << " ms, done at " << steady_ns()
+                << '\n';
     drawing_.reset();
   }
 

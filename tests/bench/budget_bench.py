@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""The frame budget measured in the window, side by side with it off.
+Run as: xvfb-run -a -s "-screen 0 1920x1080x24" python3 budget_bench.py RAYMARCHING CSV_DIR SCENE...
+
+For each scene, a 1280x720 window (interface hidden, -v) runs with
+--target-fps 30 and with --target-fps 0. After a second to settle, 4 s of
+pictures are read from the -v log, whose lines carry the CLOCK_MONOTONIC
+time each picture was done. Then Space pauses, and the time to the first
+full-size picture after the key is the time to a still; then Space again,
+and a second later Q: the time to the process's exit is the input latency
+while the picture moves (the window reads keys between pictures, or between
+slices of tiles). Prints a Markdown table; writes
+CSV_DIR/budget_trace.csv, the first pictures of the heaviest scene, both ways.
+"""
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
+from harness import first_frame_window, open_window, wait_for, xdotool  # noqa: E402
+
+BUDGET_MS = 1000.0 / 30.0
+PICTURE = re.compile(r"picture (\d+)x(\d+) scale ([0-9.e-]+) in (\d+) tiles?, ([0-9.e-]+) ms, done at (\d+)")
+
+
+def pictures(path):
+    out = []
+    for m in PICTURE.finditer(open(path).read()):
+        out.append({"scale": float(m.group(3)), "tiles": int(m.group(4)), "ms": float(m.group(5)),
+                    "done": int(m.group(6)) / 1e9, "full": (int(m.group(1)), int(m.group(2))) == (1280, 720)})
+    return out
+
+
+def session(binary, scene, budget_on, work):
+    name = os.path.basename(os.path.dirname(scene)) + "/" + os.path.basename(scene) \
+        if os.path.basename(scene) == "image.frag" else os.path.basename(scene)
+    err = os.path.join(work, "stderr.txt")
+    args = [binary, scene, "--size", "1280x720", "--no-ui", "-v", "--target-fps", "30" if budget_on else "0"]
+    proc = open_window(args, os.path.join(work, "stdout.txt"), err, os.path.dirname(scene))
+    window = first_frame_window(proc, os.path.basename(scene), err, timeout=60)
+    if not window:
+        return None
+    start = time.monotonic()
+    time.sleep(5.0)
+    # The measured span: the last 4 s.
+    span = [p for p in pictures(err) if start + 1.0 <= p["done"] <= start + 5.0]
+    paused = time.monotonic()
+    xdotool("key", "--window", window, "space")
+    still = wait_for(lambda: [p for p in pictures(err) if p["done"] > paused and p["full"]], timeout=60, step=0.01)
+    still_s = still[0]["done"] - paused if still else None
+    xdotool("key", "--window", window, "space")  # running again: Q must come through the pictures
+    time.sleep(1.0)
+    pressed = time.monotonic()
+    xdotool("key", "--window", window, "q")
+    try:
+        proc.wait(timeout=60)
+        quit_s = time.monotonic() - pressed
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        quit_s = None
+    intervals = [(b["done"] - a["done"]) * 1000 for a, b in zip(span, span[1:])]
+    return {"name": name, "intervals": intervals, "scales": [p["scale"] for p in span],
+            "pictures": span, "still_s": still_s, "quit_s": quit_s, "trace": pictures(err)[:120]}
+
+
+def main():
+    binary, csv_dir, scenes = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3:]
+    work = tempfile.mkdtemp(prefix="rm-budget-")
+    rows, traces = [], {}
+    for scene in scenes:
+        for budget_on in (True, False):
+            r = session(binary, os.path.abspath(scene), budget_on, work)
+            if not r:
+                print(f"{scene}: no window", file=sys.stderr)
+                continue
+            r["budget_on"] = budget_on
+            rows.append(r)
+            traces[(r["name"], budget_on)] = r["trace"]
+            print(f"{r['name']} {'on' if budget_on else 'off'}: {len(r['intervals'])} intervals", file=sys.stderr)
+
+    def ms(s):
+        return "—" if s is None else f"{s * 1000:.0f}"
+
+    print("| scene | budget | frames in 4 s | within 33.3 ms | median frame ms | mean scale | Space to a full-size still, ms | Q to exit, ms |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        n = len(r["intervals"])
+        within = sum(1 for i in r["intervals"] if i <= BUDGET_MS) / n if n else 0.0
+        median = statistics.median(r["intervals"]) if n else float("nan")
+        scale = statistics.mean(r["scales"]) if r["scales"] else float("nan")
+        print(f"| {r['name']} | {'30 fps' if r['budget_on'] else 'off'} | {n + 1 if n else len(r['pictures'])} | "
+              f"{within * 100:.0f}% | {median:.1f} | {scale:.2f} | {ms(r['still_s'])} | {ms(r['quit_s'])} |")
+
+    # The heaviest scene's first pictures, both ways: the scale finding its step.
+    heaviest = max((r for r in rows if not r["budget_on"]), key=lambda r: statistics.median(r["intervals"] or [0]))
+    on, off = traces.get((heaviest["name"], True), []), traces.get((heaviest["name"], False), [])
+    with open(os.path.join(csv_dir, "budget_trace.csv"), "w") as f:
+        f.write("picture,scale x 100 (budget on),draw ms (budget on),draw ms (budget off)\n")
+        for i in range(min(len(on), 60)):
+            f.write(f"{i},{on[i]['scale'] * 100:.1f},{on[i]['ms']:.2f},{off[i]['ms']:.2f}\n" if i < len(off) else
+                    f"{i},{on[i]['scale'] * 100:.1f},{on[i]['ms']:.2f},\n")
+    print(f"\n<!-- trace: {heaviest['name']} -->")
+
+
+if __name__ == "__main__":
+    main()
