@@ -310,7 +310,9 @@ class WindowApp {
     // A picture drawn because something changed once gives way to a newer
     // one; a moving one is finished first. A new window size starts over.
     if (drawing_ && (drawing_->window != glm::ivec2(width, height) || (drawing_->resting && redraw))) drawing_.reset();
-    if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height);
+    // The interface shown again (F2) over a picture that went straight to
+    // the window: the same picture again, without advancing anything.
+    if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height, redraw);
     const bool straight = drawing_ && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -351,20 +353,13 @@ class WindowApp {
   // buffer passes, and plans the image pass's tiles. A moving picture (the
   // clock runs, the left button is held) is drawn at the budget's scale; one
   // at rest at full size. Feedback projects are always drawn at full size:
-  // their buffers carry pictures from frame to frame.
-  void start_picture(int width, int height) {
-    const float delta = clock_.tick();
-    inputs_.resolution = glm::vec3(width, height, 1.0f);
-    inputs_.time = static_cast<float>(clock_.time());
-    inputs_.time_delta = clock_.paused() ? 0.0f : delta;
-    inputs_.frame_rate = delta > 0 ? 1.0f / delta : 60.0f;
-    inputs_.frame = clock_.frame();
-    inputs_.mouse = mouse_.imouse();
-    inputs_.cursor = mouse_.cursor();
-    inputs_.date = date_of(std::chrono::system_clock::now());
+  // their buffers carry pictures from frame to frame. Without `advance`, the
+  // last picture's image pass again, at full size, with the same inputs.
+  void start_picture(int width, int height, bool advance) {
+    if (advance) take_inputs(width, height);
     if (!project_.ready() || too_slow_) return;  // the grey, or the picture as it is
 
-    const bool moving = (use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f;
+    const bool moving = advance && ((use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f);
     const bool budget_on = budget_.budget_ms() > 0;
     const double scale = moving && budget_on && !project_.has_feedback() ? budget_.scale() : 1.0;
     const glm::ivec2 window(width, height);
@@ -378,8 +373,10 @@ class WindowApp {
     const bool timed = ui_.visible() && (model_.hud || !model_.knobs.empty());
     graph_.time_passes(timed, true);
     const long long start = steady_ns();
-    graph_.draw_buffers(project_, in, size);
-    glFinish();  // the buffers' time is the picture's too
+    if (advance) {
+      graph_.draw_buffers(project_, in, size);
+      glFinish();  // the buffers' time is the picture's too
+    }
     // Tiles of about the budget (with room for the present), from the cost
     // per pixel the last pictures measured; unknown after a reload.
     const double per_pixel =
@@ -387,14 +384,27 @@ class WindowApp {
     const double tile_ms = budget_on ? 0.8 * budget_.budget_ms() : 1e12;
     drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
                              (steady_ns() - start) / 1e6});
+    if (!advance) return;
     refine_due_ = scale < 1.0;  // at rest, the picture is drawn again at full size
-
     ++frames_drawn_;
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
     dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
     mouse_.end_frame();
     graph_.keyboard().end_frame();
     if (!clock_.paused()) clock_.next_frame();
+  }
+
+  // The inputs of the next frame, at the window's size: the clock ticks.
+  void take_inputs(int width, int height) {
+    const float delta = clock_.tick();
+    inputs_.resolution = glm::vec3(width, height, 1.0f);
+    inputs_.time = static_cast<float>(clock_.time());
+    inputs_.time_delta = clock_.paused() ? 0.0f : delta;
+    inputs_.frame_rate = delta > 0 ? 1.0f / delta : 60.0f;
+    inputs_.frame = clock_.frame();
+    inputs_.mouse = mouse_.imouse();
+    inputs_.cursor = mouse_.cursor();
+    inputs_.date = date_of(std::chrono::system_clock::now());
   }
 
   // Draws tiles of the picture in progress until one slice of the budget is
