@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <regex>
 #include <sstream>
@@ -56,6 +57,21 @@ double parse_number(const std::string& text, const std::string& what) {
   }
   if (used != text.size() || !std::isfinite(v)) throw UsageError{what + " '" + text + "': not a finite number"};
   return v;
+}
+
+CLI::Validator finite_between(double low, double high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        char range[80];
+        std::snprintf(range, sizeof range, "a number from %g to %g", low, high);
+        try {
+          const double v = parse_number(text, "");
+          return v >= low && v <= high ? "" : "'" + text + "' is not " + range;
+        } catch (const UsageError&) {
+          return "'" + text + "' is not " + range;
+        }
+      },
+      "");
 }
 
 glm::vec4 parse_mouse(const std::string& text) {

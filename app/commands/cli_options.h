@@ -21,6 +21,9 @@ struct UsageError {
 
 glm::ivec2 parse_size(const std::string& text, const char* option);
 double parse_number(const std::string& text, const std::string& what);
+// An option's check: a finite number from `low` to `high`. CLI11's Range
+// lets NaN through, and prints DBL_MAX in full when a bound is open.
+CLI::Validator finite_between(double low, double high);
 glm::vec4 parse_mouse(const std::string& text);
 std::chrono::system_clock::time_point parse_date(const std::string& text);
 

@@ -16,7 +16,7 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--time", time_, "iTime of the (first) frame in seconds")->type_name("T");
   c.add_option("--frame", frame_, "iFrame of the (first) frame (default: time * fps)")->type_name("N")->check(CLI::NonNegativeNumber);
   c.add_option("--frames", frames_, "Render COUNT frames; OUT needs a counter like frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
-  c.add_option("--fps", fps_, "Frames per second of a sequence")->type_name("F")->check(CLI::Range(0.001, 100000.0));
+  c.add_option("--fps", fps_, "Frames per second of a sequence")->type_name("F")->check(finite_between(0.001, 100000.0));
   c.add_option("--mouse", mouse_, "iMouse as X,Y[,CX,CY] in pixels")->type_name("X,Y[,CX,CY]");
   c.add_option("--set", sets_, "A value for one of the shader's own uniforms (repeatable; a screenshot records "
                                "every value this way)")->type_name("NAME=VALUE");
@@ -25,7 +25,7 @@ RenderCommand::RenderCommand(CLI::App& app)
                                 "normals, depth, or NaN/Inf pixels in magenta")
       ->check(CLI::IsMember({"steps", "normals", "depth", "nan"}));
   c.add_option("--timeout", timeout_, "Stop a render that runs longer, with exit status 124; nothing it wrote "
-                                      "is left")->type_name("SECONDS")->check(CLI::PositiveNumber);
+                                      "is left")->type_name("SECONDS")->check(finite_between(0.001, 1e8));
   channels_.add_to(c);
 }
 

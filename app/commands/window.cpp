@@ -21,10 +21,10 @@ WindowCommand::WindowCommand(CLI::App& app) {
   app.add_option("--target-fps", target_fps_, "Frame budget: a changing picture is drawn at a lower resolution "
                                               "(down to 1/8 per axis), and a heavy one in tiles, to hold this rate; "
                                               "0 turns it off")
-      ->type_name("F")->check(CLI::Range(0.0, 1000.0));
+      ->type_name("F")->check(finite_between(0.0, 1000.0));
   app.add_option("--tile-limit", tile_limit_, "A shader whose smallest tile takes longer is reported too slow and "
                                               "no longer drawn, until the next save")
-      ->type_name("SECONDS")->check(CLI::Range(0.001, 3600.0));
+      ->type_name("SECONDS")->check(finite_between(0.001, 3600.0));
   channels_.add_to(app);
 }
 

@@ -1,5 +1,6 @@
 #include "headless/deadline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -31,7 +32,9 @@ bool Deadline::write(const std::filesystem::path& path, const std::function<bool
 
 void Deadline::watch(double seconds) {
   std::unique_lock lock(mutex_);
-  const auto limit = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  // Past a few years the limit is no limit: a double that large would overflow the clock.
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(std::min(seconds, 1e8)));
   if (ended_.wait_until(lock, limit, [this] { return done_; })) return;
   // The lock is ours: no write is under way, and none starts.
   for (const auto& path : written_) {

@@ -224,6 +224,12 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " -D 9bad=1", "-D '9bad=1'"},
       {"render " + g, "--output"},
       {"render " + g + " -o " + out + " --timeout 0", "--timeout"},
+      // NaN passes CLI11's Range; a number past the clock's reach overflowed it.
+      {"render " + g + " -o " + out + " --timeout nan", "--timeout: 'nan' is not a number from 0.001 to 1e+08"},
+      {"render " + g + " -o " + out + " --timeout 1e300", "--timeout: '1e300' is not a number"},
+      {"render " + g + " -o " + out + " --fps nan", "--fps: 'nan' is not a number"},
+      {"--target-fps nan", "--target-fps: 'nan' is not a number from 0 to 1000"},
+      {"--tile-limit inf", "--tile-limit: 'inf' is not a number"},
   };
   for (const auto& [args, expected] : cases) {
     test::Outcome r = run(args);
