@@ -21,20 +21,20 @@ void ScaleController::measured(double scale, double ms) {
   next_ = (next_ + 1) % estimates_.size();
   count_ = std::min(count_ + 1, 3);
   const double full = full_frame_ms();
-  auto first_step_under = [&](double share, int from, int to) {
-    for (int k = from; k < to; ++k)
+  auto first_step_under = [&](double share, int to) {  // the largest picture under `share` of the budget
+    for (int k = 0; k < to; ++k)
       if (full * scale_of(k) * scale_of(k) <= share * budget_ms_) return k;
     return to;
   };
   // Over budget where it is: down at once, as far as the estimate says.
-  const int hold = std::min(first_step_under(kHoldAt, 0, kSteps), kSteps - 1);
+  const int hold = std::min(first_step_under(kHoldAt, kSteps), kSteps - 1);
   if (hold > step_) {
     step_ = hold;
     raise_votes_ = 0;
     return;
   }
   // Room for a larger picture: up only when three frames in a row agree.
-  const int raise = first_step_under(kRaiseAt, 0, step_);
+  const int raise = first_step_under(kRaiseAt, step_);
   if (raise < step_ && ++raise_votes_ >= 3) {
     step_ = raise;
     raise_votes_ = 0;

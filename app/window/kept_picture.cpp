@@ -8,8 +8,7 @@ GLuint KeptPicture::target(glm::ivec2 size) {
     glTextureStorage2D(color.get(), 1, GL_RGBA8, size.x, size.y);
     gl::Framebuffer fbo = gl::make_framebuffer();
     glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, color.get(), 0);
-    const float grey[4] = {0.1f, 0.1f, 0.1f, 1.0f};  // the window's colour before a first picture
-    if (!drawn_) glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, grey);
+    if (!drawn_) glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, kNoPictureGrey);
     else glBlitNamedFramebuffer(fbo_.get(), fbo.get(), 0, 0, size_.x, size_.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
                              GL_LINEAR);
     color_ = std::move(color);

@@ -11,6 +11,9 @@
 
 namespace rm {
 
+// What the window shows where there is no picture yet.
+constexpr float kNoPictureGrey[4] = {0.1f, 0.1f, 0.1f, 1.0f};
+
 class KeptPicture {
  public:
   // The framebuffer the graph draws the picture into, at `size`. A new size

@@ -320,8 +320,7 @@ class WindowApp {
     if (!straight && picture_.has_picture()) {
       picture_.present({width, height});
     } else if (!straight) {  // the grey until a first good load
-      glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT);
+      glClearNamedFramebufferfv(0, GL_COLOR, 0, kNoPictureGrey);
     }
     if (errors_ > 0) draw_stale_badge(width, height);
     draw_interface();
@@ -462,9 +461,9 @@ class WindowApp {
     std::snprintf(message, sizeof message,
                   "too slow: a %dx%d tile took %.2f s (--tile-limit %g s); not drawn again until the next save",
                   tile.z, tile.w, ms / 1000.0, options_.tile_limit_s);
-    const fs::path file = project_.passes().back().file;
-    std::cerr << file.string() << ": error: " << message << '\n';
-    model_.errors.push_back({Severity::Error, file.string(), 0, 0, message});
+    const Diagnostic too_slow{Severity::Error, project_.passes().back().file.string(), 0, 0, message};
+    std::cerr << too_slow.str() << '\n';
+    model_.errors.push_back(too_slow);
     ++errors_;
     too_slow_ = true;
     drawing_.reset();

@@ -102,8 +102,8 @@ def main():
     with open(os.path.join(csv_dir, "budget_trace.csv"), "w") as f:
         f.write("picture,scale x 100 (budget on),draw ms (budget on),draw ms (budget off)\n")
         for i in range(min(len(on), 60)):
-            f.write(f"{i},{on[i]['scale'] * 100:.1f},{on[i]['ms']:.2f},{off[i]['ms']:.2f}\n" if i < len(off) else
-                    f"{i},{on[i]['scale'] * 100:.1f},{on[i]['ms']:.2f},\n")
+            off_ms = f"{off[i]['ms']:.2f}" if i < len(off) else ""
+            f.write(f"{i},{on[i]['scale'] * 100:.1f},{on[i]['ms']:.2f},{off_ms}\n")
     print(f"\n<!-- trace: {heaviest['name']} -->")
 
 
