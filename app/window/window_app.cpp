@@ -376,11 +376,12 @@ class WindowApp {
       graph_.draw_buffers(project_, in, size);
       glFinish();  // the buffers' time is the picture's too
     }
-    // Tiles of about the budget (with room for the present), from the cost
-    // per pixel the last pictures measured; unknown after a reload.
+    // Tiles of one budget, from the cost per pixel the last pictures
+    // measured (unknown after a reload): a picture the controller sized to
+    // fit (under kHoldAt of it, which leaves room for the present) is one tile.
     const double per_pixel =
         !budget_on ? 1e-12 : program_drawn_ ? budget_.full_frame_ms() / (double(width) * height) : 0.0;
-    const double tile_ms = budget_on ? 0.8 * budget_.budget_ms() : 1e12;
+    const double tile_ms = budget_on ? budget_.budget_ms() : 1e12;
     drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
                              (steady_ns() - start) / 1e6});
     if (!advance) return;
