@@ -1,5 +1,6 @@
 #include "commands/render.h"
 
+#include "core/supersampling.h"
 #include "core/views.h"
 #include "headless/render_command.h"
 
@@ -24,6 +25,9 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--view", view_, "A debug view instead of the picture: map() calls per pixel as a heatmap, "
                                 "normals, depth, or NaN/Inf pixels in magenta")
       ->check(CLI::IsMember({"steps", "normals", "depth", "nan"}));
+  c.add_option("--samples", samples_, "Supersamples per pixel, averaged: sub-pixel offsets from the pixel's centre "
+                                      "(the window's --refine takes the same ones)")
+      ->type_name("N")->check(CLI::Range(1, kMaxSamples));
   c.add_option("--timeout", timeout_, "Stop a render that runs longer, with exit status 124; nothing it wrote "
                                       "is left")->type_name("SECONDS")->check(finite_between(0.001, 1e8));
   channels_.add_to(c);
@@ -48,6 +52,7 @@ int RenderCommand::run() const {
   req.media = media_;
   req.sets = sets_;
   req.timeout = timeout_;
+  req.samples = samples_;
   return render_command(req);
 }
 

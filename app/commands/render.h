@@ -19,7 +19,7 @@ class RenderCommand {
   CLI::App* command_;
   std::string scene_, out_, size_ = "640x360", time_ = "0", mouse_, date_, view_;
   std::vector<std::string> sets_;  // --set NAME=VALUE
-  int frame_ = -1, frames_ = 0;
+  int frame_ = -1, frames_ = 0, samples_ = 1;
   double fps_ = 60.0;
   double timeout_ = 0;
   SourceFlags source_;

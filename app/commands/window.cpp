@@ -1,6 +1,7 @@
 #include "commands/window.h"
 
 #include "core/data_paths.h"
+#include "core/supersampling.h"
 #include "window/window_app.h"
 
 namespace rm::cli {
@@ -25,6 +26,9 @@ WindowCommand::WindowCommand(CLI::App& app) {
   app.add_option("--tile-limit", tile_limit_, "A shader whose smallest tile takes longer is reported too slow and "
                                               "no longer drawn, until the next save")
       ->type_name("SECONDS")->check(finite_between(0.001, 3600.0));
+  app.add_option("--refine", refine_, "A picture at rest is refined to N supersamples per pixel, as render "
+                                      "--samples N draws them; 0 or 1 turns it off")
+      ->type_name("N")->check(CLI::Range(0, kMaxSamples));
   channels_.add_to(app);
 }
 
@@ -51,6 +55,7 @@ int WindowCommand::run() const {
   opts.controls = controls_;
   opts.target_fps = target_fps_;
   opts.tile_limit_s = tile_limit_;
+  opts.refine = std::max(1, refine_);
   return run_window(opts);
 }
 

@@ -21,6 +21,7 @@ class WindowCommand {
   bool hud_ = false;
   bool controls_ = false;
   double target_fps_ = 30.0;
+  int refine_ = 16;
   double tile_limit_ = 2.0;
   SourceFlags source_;
   ChannelFlags channels_;

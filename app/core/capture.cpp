@@ -186,7 +186,7 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
   return std::nullopt;
 }
 
-Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& in) {
+Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& in, int samples) {
   Metadata out{{"raymarching:scene", fs::absolute(scene).lexically_normal().string()}};
   std::string command = "raymarching render " + scene.string();
   for (const fs::path& dir : source.include_dirs) command += " -I " + dir.string();
@@ -206,6 +206,10 @@ Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, cons
   for (const UniformValue& u : in.uniforms) {
     command += " --set " + u.name + "=" + u.text;
     out.emplace_back("raymarching:uniform:" + u.name, u.text);
+  }
+  if (samples > 1) {
+    command += " --samples " + std::to_string(samples);
+    out.emplace_back("raymarching:samples", std::to_string(samples));
   }
   out.emplace_back("ImageDescription", std::move(command));
   return out;

@@ -211,6 +211,7 @@ void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInpu
   FrameInputs pass_in = in;
   pass_in.resolution = glm::vec3(size, 1.0f);
   pass_in.frag_coord_offset = glm::vec2(0.0f);
+  pass_in.sample = 0;  // a buffer is data that later frames read, not a picture to smooth
   const ChannelInputs inputs = inputs_of(project, index);
   timed(project, index, [&] {
     for (int face = 0; face < (pass.cube ? 6 : 1); ++face) {
@@ -251,14 +252,15 @@ void FrameGraph::draw_image(const Project& project, const FrameInputs& in, glm::
   if (part) glDisable(GL_SCISSOR_TEST);
 }
 
-Image FrameGraph::render_image(const Project& project, const FrameInputs& in, glm::ivec2 size) const {
-  return renderer_.render_image(*project.image_program(), in, inputs_of(project, project.passes().size() - 1), size);
+Image FrameGraph::render_image(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples) const {
+  return renderer_.render_image(*project.image_program(), in, inputs_of(project, project.passes().size() - 1), size,
+                                samples);
 }
 
-Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size) {
+Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples) {
   draw_buffers(project, in, size);
   Image image;
-  timed(project, project.passes().size() - 1, [&] { image = render_image(project, in, size); });  // with the read-back
+  timed(project, project.passes().size() - 1, [&] { image = render_image(project, in, size, samples); });  // with the read-back
   return image;
 }
 

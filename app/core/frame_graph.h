@@ -45,12 +45,14 @@ class FrameGraph {
   // Only the image pass, over `region` (x, y, width, height) of `target`'s
   // (0,0,size) viewport: one tile of a picture drawn in parts. gl_FragCoord
   // is the whole picture's, so every kind of shader can be drawn this way.
+  // in.sample > 0 blends a supersample into what `target` holds.
   void draw_image(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target, glm::ivec4 region);
   // The image pass alone, read back (in tiles past the driver's limit),
   // reading the buffers as they are: a screenshot must not advance them.
-  Image render_image(const Project& project, const FrameInputs& in, glm::ivec2 size) const;
-  // draw() into an image: buffers, then the image pass.
-  Image render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size);
+  // Each pixel is the mean of `samples` supersamples (core/supersampling.h).
+  Image render_image(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples = 1) const;
+  // draw() into an image: buffers once, then the image pass's samples.
+  Image render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples = 1);
 
   // Per-pass timing, for the HUD and the benchmarks: GPU time from a
   // GL_TIME_ELAPSED query around each pass and, with `finish`, the wall

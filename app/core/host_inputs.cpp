@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/program.h"
+#include "core/supersampling.h"
 
 namespace rm {
 
@@ -65,9 +66,11 @@ const std::vector<HostInput>& host_inputs() {
          for (int i = 0; i < 4; ++i) p.set_element(n, i, &in.time, 1);
        },
        "", nullptr},
-      // Where a tile starts, for pictures drawn in tiles (the wrapper adds it to fragCoord).
+      // What gl_FragCoord is moved by (core/source.cpp): where a tile starts,
+      // for pictures drawn in tiles, plus a supersample's sub-pixel offset.
       {"rm_FragCoordOffset", "uniform vec2 rm_FragCoordOffset;", Changes::Never,
-       [](P p, const char* n, I in) { set_vec<2>(p, n, in.frag_coord_offset); }, "", nullptr},
+       [](P p, const char* n, I in) { set_vec<2>(p, n, in.frag_coord_offset + sample_offset(in.sample)); }, "",
+       nullptr},
       // Which face a Cube A pass draws (0..5: +X, -X, +Y, -Y, +Z, -Z).
       {"rm_CubeFace", "uniform int rm_CubeFace;", Changes::Never,
        [](P p, const char* n, I in) { p.set(n, static_cast<float>(in.cube_face)); }, "", nullptr},

@@ -29,6 +29,7 @@ struct FrameInputs {
   glm::vec4 date{0.0f};                    // year, month from 0, day, seconds since midnight
   float sample_rate = 44100.0f;
   glm::vec2 frag_coord_offset{0.0f};       // tile origin when rendering in tiles
+  int sample = 0;                          // which supersample of the picture (core/supersampling.h); 0: the pixel centres
   int cube_face = 0;                       // the face a Cube A pass draws
   std::vector<UniformValue> uniforms;      // the shader's own uniforms, set in every pass that declares them
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "core/supersampling.h"
+
 namespace rm {
 
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
@@ -44,15 +46,31 @@ void Renderer::draw(const Program& program, const FrameInputs& in, const Channel
   glViewport(0, 0, size.x, size.y);
   glUseProgram(program.id());
   glBindVertexArray(vao_.get());
+  const bool blend = in.sample > 0;
+  if (blend) {  // mean' = mean + (sample - mean) * weight
+    glEnable(GL_BLEND);
+    glBlendColor(0.0f, 0.0f, 0.0f, sample_weight(in.sample));
+    glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (blend) glDisable(GL_BLEND);
 }
 
-Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size) const {
+Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,
+                             int samples) const {
+  // Every sample of a tile, one after the other into its float target.
+  auto draw_samples = [&](glm::ivec2 part) {
+    for (int s = 0; s < samples; ++s) {
+      inputs.sample = s;
+      draw(program, inputs, channels, part);
+      if (samples > 1) glFinish();  // bound the work queued on software renderers
+    }
+  };
   const int tile = max_tile_;
   if (size.x <= tile && size.y <= tile) {
     RenderTarget target(size.x, size.y);
     target.bind();
-    draw(program, inputs, channels, size);
+    draw_samples(size);
     return target.read();
   }
   Image full{size.x, size.y, std::vector<float>(static_cast<size_t>(size.x) * size.y * 4)};
@@ -62,7 +80,7 @@ Image Renderer::render_image(const Program& program, FrameInputs inputs, const C
       RenderTarget target(part.x, part.y);
       target.bind();
       inputs.frag_coord_offset = glm::vec2(x0, y0);
-      draw(program, inputs, channels, part);
+      draw_samples(part);
       glFinish();  // bound the work queued per tile on software renderers
       Image piece = target.read();
       // piece row 0 is its top, which is full-image row size.y - (y0 + part.y).

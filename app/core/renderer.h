@@ -43,13 +43,17 @@ class Renderer {
  public:
   Renderer();  // needs a current GL context
   // Sets every input the program reads and draws over the bound framebuffer's
-  // (0,0,size) viewport.
+  // (0,0,size) viewport. A supersample (inputs.sample > 0) is blended into
+  // the running mean of the samples already there (core/supersampling.h):
+  // a float target keeps that mean exact.
   void draw(const Program& program, const FrameInputs& inputs, const ChannelInputs& channels, glm::ivec2 size) const;
 
-  // Renders offscreen at `size`, in tiles no larger than the driver allows;
-  // tiling shifts fragCoord, which only the Shadertoy wrapper honours, so
-  // callers check supports_tiles() first.
-  Image render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size) const;
+  // Renders offscreen at `size`, in tiles no larger than the driver allows,
+  // each the mean of `samples` supersamples (1: the pixel centres alone).
+  // A tile moves gl_FragCoord by its origin; callers check that the shader
+  // kind can be drawn in tiles first.
+  Image render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,
+                     int samples = 1) const;
   int max_tile() const { return max_tile_; }
   void limit_tile(int pixels) { max_tile_ = std::max(1, std::min(max_tile_, pixels)); }  // tests tiling
 

@@ -66,7 +66,7 @@ vec4 rm_view(vec4 color, vec2 fragCoord) {
 #endif
 void main() {
   vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
-  vec2 fragCoord = gl_FragCoord.xy + rm_FragCoordOffset;
+  vec2 fragCoord = gl_FragCoord.xy;
   mainImage(color, fragCoord);
 #ifdef RM_VIEW
   color = rm_view(color, fragCoord);
@@ -80,6 +80,22 @@ const char* const kLegacyPrelude = R"(#define texture2D texture
 #define texture2DProj textureProj
 #define textureCube texture
 #define varying in)";
+
+// Every kind of shader reads gl_FragCoord through the host's offset: a tile's
+// origin (render_image past the driver's size) plus a supersample's sub-pixel
+// jitter (core/supersampling.h). A macro may name itself without recursion.
+const char* const kFragCoordOffset = "#define gl_FragCoord (gl_FragCoord + vec4(rm_FragCoordOffset, 0.0, 0.0))";
+
+// Whether the code redeclares gl_FragCoord (`layout(origin_upper_left) in
+// vec4 gl_FragCoord;`), which the macro above would break.
+bool redeclares_frag_coord(std::string_view code) {
+  for (size_t at = code.find("gl_FragCoord"); at != std::string_view::npos; at = code.find("gl_FragCoord", at + 1)) {
+    size_t end = at;
+    while (end > 0 && lexing::is_space(code[end - 1])) --end;
+    if (end >= 4 && code.substr(end - 4, 4) == "vec4") return true;
+  }
+  return false;
+}
 
 // Calls line(text, number) for each line of `text` (1-based numbers; "\r\n"
 // ends a line as "\n" does) until it returns false.
@@ -411,9 +427,15 @@ class Preprocessor {
 
     if (out_.kind == ShaderKind::Shadertoy) {
       emit_host(shadertoy_prelude(out_.channels));
-    } else if (out_.kind == ShaderKind::Legacy) {
-      emit_host(kLegacyPrelude);
-      if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
+      emit_host(kFragCoordOffset);
+    } else {
+      if (out_.kind == ShaderKind::Legacy) {
+        emit_host(kLegacyPrelude);
+        if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
+      }
+      out_.movable_frag_coord = !redeclares_frag_coord(code);
+      if (lexing::has_word(code, "gl_FragCoord") && out_.movable_frag_coord)
+        emit_host(std::string("uniform vec2 rm_FragCoordOffset;\n") + kFragCoordOffset);
     }
     out_.text += body_;
     out_.line_map.insert(out_.line_map.end(), body_map_.begin(), body_map_.end());

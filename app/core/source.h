@@ -68,6 +68,9 @@ struct Source {
   // A Shadertoy Cube A pass: it defines mainCubemap instead of mainImage and
   // is drawn once per cube face (rm_CubeFace says which).
   bool cubemap = false;
+  // Whether the host moves gl_FragCoord (by a tile's origin, a supersample's
+  // offset): false only for a shader that redeclares gl_FragCoord itself.
+  bool movable_frag_coord = true;
   std::string version_line;        // the #version line the final text starts with
   // What iChannel0..3 read, named in the shader by #pragma channelN
   // (core/channel_spec.h; a file is relative to the file that names it);

@@ -96,9 +96,10 @@ int render_command(const RenderRequest& req) {
   print_diagnostics(project.diagnostics());
   if (!built) return kExitShaderError;
   Renderer renderer;
-  if (std::max(req.size.x, req.size.y) > renderer.max_tile() && project.image_source().kind != ShaderKind::Shadertoy)
+  if (std::max(req.size.x, req.size.y) > renderer.max_tile() && !project.image_source().movable_frag_coord)
     return fail("--size " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) + " is larger than " +
-                    std::to_string(renderer.max_tile()) + " pixels, which only mainImage shaders can render (in tiles)",
+                    std::to_string(renderer.max_tile()) +
+                    " pixels, and a shader that redeclares gl_FragCoord cannot be drawn in tiles",
                 kExitUsage);
   FrameGraph graph(renderer);
   if (!graph.update(project, &error)) return fail(error, kExitUsage);
@@ -137,10 +138,10 @@ int render_command(const RenderRequest& req) {
   }
   for (int i = 0; i < count; ++i) {
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
-    Image image = graph.render_frame(project, in, req.size);
+    Image image = graph.render_frame(project, in, req.size, req.samples);
     const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
     const bool written = deadline.write(out, [&] {
-      return write_image(out, image, frame_metadata(req.scene, req.source, in), Overwrite::Replace, &error).has_value();
+      return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples), Overwrite::Replace, &error).has_value();
     });
     if (!written) return fail(error, kExitUsage);
     if (sequence || warm_up) show_progress(total - count + i + 1, total);

@@ -30,6 +30,7 @@ struct RenderRequest {
   View view = View::Picture;  // --view: a debug view instead of the picture
   std::vector<std::string> sets;  // --set NAME=VALUE: the shader's own uniforms
   double timeout = 0;  // seconds; 0: none (see headless/deadline)
+  int samples = 1;     // supersamples per pixel (core/supersampling.h)
 };
 
 int render_command(const RenderRequest& request);

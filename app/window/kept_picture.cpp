@@ -3,25 +3,21 @@
 namespace rm {
 
 GLuint KeptPicture::target(glm::ivec2 size) {
-  if (size != size_ || !fbo_) {
-    gl::Texture color = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(color.get(), 1, GL_RGBA8, size.x, size.y);
-    gl::Framebuffer fbo = gl::make_framebuffer();
-    glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, color.get(), 0);
-    if (!drawn_) glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, kNoPictureGrey);
-    else glBlitNamedFramebuffer(fbo_.get(), fbo.get(), 0, 0, size_.x, size_.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
-                             GL_LINEAR);
-    color_ = std::move(color);
-    fbo_ = std::move(fbo);
-    size_ = size;
+  if (size != this->size()) {
+    RenderTarget fresh(size.x, size.y);
+    if (!drawn_) glClearNamedFramebufferfv(fresh.framebuffer(), GL_COLOR, 0, kNoPictureGrey);
+    else glBlitNamedFramebuffer(kept_->framebuffer(), fresh.framebuffer(), 0, 0, kept_->width(), kept_->height(), 0, 0,
+                                size.x, size.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    kept_.emplace(std::move(fresh));
   }
-  return fbo_.get();
+  return kept_->framebuffer();
 }
 
 void KeptPicture::present(glm::ivec2 window) const {
-  if (!fbo_) return;
-  glBlitNamedFramebuffer(fbo_.get(), 0, 0, 0, size_.x, size_.y, 0, 0, window.x, window.y, GL_COLOR_BUFFER_BIT,
-                         size_ == window ? GL_NEAREST : GL_LINEAR);
+  if (!kept_) return;
+  const glm::ivec2 size = this->size();
+  glBlitNamedFramebuffer(kept_->framebuffer(), 0, 0, 0, size.x, size.y, 0, 0, window.x, window.y, GL_COLOR_BUFFER_BIT,
+                         size == window ? GL_NEAREST : GL_LINEAR);
 }
 
 }  // namespace rm

@@ -80,7 +80,8 @@ void hud(const UiModel& model) {
   ImGui::Text("CPU %.2f ms   GPU %.2f ms   %.1f fps", f.cpu_ms, f.gpu_ms, f.fps);
   ImGui::Text("%d x %d   iTime %.2f   iFrame %d   %s", f.resolution.x, f.resolution.y, f.time, f.frame,
               !f.animated ? "static" : f.paused ? "paused" : "running");
-  ImGui::Text("scale %.2f   %d %s", f.scale, f.tiles, f.tiles == 1 ? "tile" : "tiles");
+  ImGui::Text("scale %.2f   %d %s   %d %s", f.scale, f.tiles, f.tiles == 1 ? "tile" : "tiles", f.samples,
+              f.samples == 1 ? "sample" : "samples");
   if (f.passes.size() > 1)
     for (const auto& [name, ms] : f.passes) ImGui::Text("  %-20s %6.2f ms", name.c_str(), ms);
   ImGui::End();

@@ -31,6 +31,7 @@ struct HudFigures {
   bool animated = false;  // false: a static picture, drawn only on change
   double scale = 1;       // the frame budget's, per axis
   int tiles = 1;          // the picture was drawn in this many tiles
+  int samples = 0;        // supersamples of the picture at rest (--refine); 0: moving
   std::vector<std::pair<std::string, double>> passes;  // name, GPU ms, in draw order
 };
 

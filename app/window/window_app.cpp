@@ -97,7 +97,7 @@ class WindowApp {
       // A picture that cannot change is drawn once: then sleep until an event,
       // waking every 20 ms to look at the watcher (a save shows up that fast).
       // A picture drawn in tiles comes back here between slices of tiles.
-      auto busy = [&] { return redraw_needed() || ui_frames_ > 0 || drawing_; };
+      auto busy = [&] { return redraw_needed() || ui_frames_ > 0 || drawing_ || refining() || shot_requested_; };
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
@@ -313,6 +313,7 @@ class WindowApp {
     // The interface shown again (F2) over a picture that went straight to
     // the window: the same picture again, without advancing anything.
     if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height, redraw);
+    else if (!drawing_ && refining()) start_picture(width, height, false, samples_);
     const bool straight = drawing_ && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -324,7 +325,8 @@ class WindowApp {
     }
     if (errors_ > 0) draw_stale_badge(width, height);
     draw_interface();
-    if (shot_requested_) {  // before the swap, with this frame's inputs
+    // Before the swap, with this frame's inputs; a supersample under way is finished first.
+    if (shot_requested_ && !(drawing_ && drawing_->inputs.sample > 0)) {
       shot_requested_ = false;
       screenshot();
     }
@@ -353,8 +355,9 @@ class WindowApp {
   // clock runs, the left button is held) is drawn at the budget's scale; one
   // at rest at full size. Feedback projects are always drawn at full size:
   // their buffers carry pictures from frame to frame. Without `advance`, the
-  // last picture's image pass again, at full size, with the same inputs.
-  void start_picture(int width, int height, bool advance) {
+  // last picture's image pass again, at full size, with the same inputs:
+  // sample 0 shows it again, a later sample refines it (--refine).
+  void start_picture(int width, int height, bool advance, int sample = 0) {
     if (advance) take_inputs(width, height);
     if (!project_.ready() || too_slow_) return;  // the grey, or the picture as it is
 
@@ -365,6 +368,7 @@ class WindowApp {
     const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(window) * scale)));
     const glm::vec2 ratio = glm::vec2(size) / glm::vec2(window);
     FrameInputs in = inputs_;
+    in.sample = sample;
     in.resolution = glm::vec3(size, 1.0f);
     in.mouse *= glm::vec4(ratio, ratio);
     in.cursor *= ratio;
@@ -384,6 +388,7 @@ class WindowApp {
     const double tile_ms = budget_on ? budget_.budget_ms() : 1e12;
     drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
                              (steady_ns() - start) / 1e6});
+    if (sample == 0) samples_ = 0;
     if (!advance) return;
     refine_due_ = scale < 1.0;  // at rest, the picture is drawn again at full size
     ++frames_drawn_;
@@ -418,7 +423,9 @@ class WindowApp {
     bool straight = false;
     do {
       const glm::ivec4 tile = p.plan.next();
-      straight = p.tiles == 0 && tile == glm::ivec4(0, 0, p.size) && p.scale == 1.0 && !ui_.visible();
+      // A picture at rest that will be refined gathers its samples in the kept picture.
+      const bool refined = p.resting && options_.refine > 1;
+      straight = p.tiles == 0 && tile == glm::ivec4(0, 0, p.size) && p.scale == 1.0 && !ui_.visible() && !refined;
       if (straight) picture_.forget();
       const GLuint target = straight ? 0 : picture_.target(p.size);
       const long long start = steady_ns();
@@ -437,12 +444,25 @@ class WindowApp {
       if (!program_drawn_ && probe) p.compile_ms = ms;
       program_drawn_ = true;
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
-    if (p.plan.done()) finish_picture();
+    if (p.plan.done()) finish_picture(straight);
     return straight;
   }
 
-  void finish_picture() {
+  void finish_picture(bool straight) {
     const Picture& p = *drawing_;
+    // The picture kept at rest, at full size, now holds this many samples.
+    samples_ = p.resting && p.scale == 1.0 && !straight ? p.inputs.sample + 1 : 0;
+    model_.figures.samples = samples_;
+    if (p.inputs.sample > 0) {  // the budget measured sample 0's picture, with its buffers
+      frame_ms_ = p.plan.drawn_ms();
+      model_.figures.tiles = p.tiles;
+      if (options_.verbose)
+        std::cerr << "raymarching: sample " << samples_ << " of " << options_.refine << " in " << p.tiles
+                  << (p.tiles == 1 ? " tile, " : " tiles, ") << frame_ms_ << " ms, done at " << steady_ns() << '\n';
+      drawing_.reset();
+      update_title(true);
+      return;
+    }
     frame_ms_ = p.buffers_ms + p.plan.drawn_ms() - p.compile_ms;
     budget_.measured(p.scale, frame_ms_);
     model_.figures.scale = p.scale;
@@ -528,6 +548,7 @@ class WindowApp {
       }
       if (model_.figures.tiles > 1) title += " in " + std::to_string(model_.figures.tiles) + " tiles";
     }
+    if (samples_ > 1) title += ", " + std::to_string(samples_) + "/" + std::to_string(options_.refine) + " samples";
     if (view_ != View::Picture) title += std::string(" (view: ") + to_string(view_) + ")";
     if (clock_.paused()) title += " (paused)";
     if (project_.ready() && !use_.time) title += " (static: drawn on change)";
@@ -541,21 +562,26 @@ class WindowApp {
     }
     const int scale = std::max(1, options_.shot_scale);
     const glm::ivec2 size = glm::ivec2(glm::vec2(inputs_.resolution)) * scale;
-    if (std::max(size.x, size.y) > renderer_.max_tile() && project_.image_source().kind != ShaderKind::Shadertoy) {
+    if (std::max(size.x, size.y) > renderer_.max_tile() && !project_.image_source().movable_frag_coord) {
       std::cerr << "raymarching: error: --shot-scale " << scale << " exceeds " << renderer_.max_tile()
-                << " pixels, which only mainImage shaders can render in tiles\n";
+                << " pixels, and a shader that redeclares gl_FragCoord cannot be drawn in tiles\n";
       return;
     }
     FrameInputs in = inputs_;
     in.resolution = glm::vec3(size, 1.0f);
     in.mouse *= static_cast<float>(scale);
     in.cursor *= static_cast<float>(scale);
-    Image image = graph_.render_image(project_, in, size);
+    // A refined picture at rest is the one to keep: it is what `render
+    // --samples` with the samples it has gathered draws.
+    const bool refined = samples_ > 1 && !drawing_ && picture_.size() == size;
+    const int samples = refined ? samples_ : 1;
+    Image image = refined ? picture_.read() : graph_.render_image(project_, in, size);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const std::string name = options_.scene.stem().string() + "-" + timestamp_now() + "." + options_.shot_format;
     std::string error;
     auto written =
-        write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, source_, in), Overwrite::Never, &error);
+        write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, source_, in, samples), Overwrite::Never,
+                    &error);
     if (written) std::cout << "screenshot: " << written->string() << std::endl;
     else std::cerr << "raymarching: error: screenshot: " << error << '\n';
   }
@@ -588,8 +614,11 @@ class WindowApp {
   // otherwise only after something it reads changed (or a screenshot is due).
   // Never while minimised: nobody sees it.
   bool redraw_needed() const {
-    return shot_requested_ ||
-           (!iconified_ && !too_slow_ && (dirty_ || refine_due_ || (use_.time && !clock_.paused())));
+    return !iconified_ && !too_slow_ && (dirty_ || refine_due_ || (use_.time && !clock_.paused()));
+  }
+  // A picture at rest still gathering supersamples (--refine).
+  bool refining() const {
+    return samples_ > 0 && samples_ < options_.refine && !iconified_ && !too_slow_ && project_.ready();
   }
 
   const WindowOptions& options_;
@@ -638,6 +667,7 @@ class WindowApp {
   ScaleController budget_;
   std::optional<Picture> drawing_;
   bool refine_due_ = false;     // the last picture was scaled down: at rest, draw it at full size
+  int samples_ = 0;             // supersamples the kept picture holds of the picture at rest; 0: not at rest
   bool program_drawn_ = false;  // the current program has drawn a tile (the driver has compiled it)
   bool too_slow_ = false;       // the watchdog stopped the current program
   std::chrono::steady_clock::time_point title_updated_{};

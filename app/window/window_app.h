@@ -29,6 +29,7 @@ struct WindowOptions {
   bool controls = false;              // the controls panel open at start
   double target_fps = 30;             // the frame budget; 0: off (every picture whole, at full size)
   double tile_limit_s = 2;            // a smallest tile slower than this: the shader is too slow
+  int refine = 16;                    // supersamples per pixel of a picture at rest; 1: none
 };
 
 // Runs until the window closes; returns the process exit status.

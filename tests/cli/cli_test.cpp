@@ -230,6 +230,9 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --fps nan", "--fps: 'nan' is not a number"},
       {"--target-fps nan", "--target-fps: 'nan' is not a number from 0 to 1000"},
       {"--tile-limit inf", "--tile-limit: 'inf' is not a number"},
+      {"render " + g + " -o " + out + " --samples 0", "--samples"},
+      {"render " + g + " -o " + out + " --samples 5000", "--samples"},
+      {"--refine -1", "--refine"},
   };
   for (const auto& [args, expected] : cases) {
     test::Outcome r = run(args);

@@ -8,7 +8,9 @@ a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
-`render` agree on.
+`render` agree on; a static scene with hard edges is refined at rest to
+--refine supersamples, which the screen, F12 and `render --samples` agree
+on (and one sample does not), and a save starts the refinement again.
 """
 import os
 import re
@@ -42,6 +44,14 @@ void mainImage(out vec4 c, in vec2 f) {
   float a = 0.0;
   for (int i = 0; i < 400; ++i) a += sin(uv.x * 10.0 + float(i) * 0.01 + iTime) * 0.0025;
   c = vec4(uv, 0.5 + a, 1.0);
+}
+"""
+# Static, with edges that supersamples smooth: a disc and stripes.
+EDGES = """// static: hard edges
+void mainImage(out vec4 c, in vec2 f) {
+  float disc = length(f - vec2(160.3, 90.7)) < 61.4 ? 1.0 : 0.0;
+  float stripes = step(0.5, fract(f.x * 0.137 + f.y * 0.071));
+  c = vec4(disc, stripes, COLOUR, 1.0);
 }
 """
 
@@ -154,6 +164,45 @@ def scaled_then_refined(work):
     proc.wait(timeout=10)
 
 
+def refined_still(work):
+    scene, proc, err, out = start(work, "edges.frag", EDGES.replace("COLOUR", "0.25"), "--refine", "8", "--no-ui",
+                                  "--shot-dir", work)
+    window = first_frame_window(proc, "edges.frag", err, timeout=30)
+    check("a static window with --refine 8 opens", bool(window))
+    if not window:
+        return
+    check("at rest, the picture gathers supersamples up to 8",
+          wait_for(lambda: "sample 8 of 8" in open(err).read(), timeout=20), open(err).read()[-500:])
+    check("the title shows them", wait_for(lambda: "8/8 samples" in xdotool("getwindowname", window)),
+          xdotool("getwindowname", window))
+    time.sleep(0.2)
+    screen = capture_screen(window, os.path.join(work, "refined.ppm"))
+    shot = take_screenshot(window, out)
+    check("F12 of the refined still writes a shot", bool(shot))
+    if shot and screen:
+        check("the shot records its samples", "--samples 8" in metadata(shot).get("ImageDescription", ""),
+              metadata(shot))
+        over = pixels_over(screen, shot, 1.5 / 255, work)
+        check("the refined picture on screen is the one F12 takes", over == 0, over)
+        command = shlex.split(metadata(shot)["ImageDescription"])
+        reference = os.path.join(work, "refined-reference.png")
+        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
+        over = pixels_over(shot, reference, 1.5 / 255, work)
+        check("... and `render --samples 8` of its command line draws it", over == 0, over)
+        one = os.path.join(work, "one-sample.png")
+        single = [a for a in command[3:] if a not in ("--samples", "8")]
+        subprocess.run([BINARY, "render", scene] + single + ["-o", one], check=True)
+        over = pixels_over(shot, one, 4 / 255, work)
+        check("... while one sample differs at the edges", over > 500, over)
+    marker = len(open(err).read())
+    save_by_rename(scene, EDGES.replace("COLOUR", "0.75"))
+    check("a save starts the refinement again",
+          wait_for(lambda: re.search(r"presented generation 2.*sample 8 of 8", open(err).read()[marker:], re.S),
+                   timeout=20), open(err).read()[marker:][-500:])
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
 if __name__ == "__main__":
     work = tempfile.mkdtemp(prefix="rm-e2e-budget-")
     try:
@@ -161,6 +210,7 @@ if __name__ == "__main__":
         heavy_fixed_by_a_save(work)
         too_slow_session(work)
         scaled_then_refined(work)
+        refined_still(work)
     finally:
         status = summary()
     sys.exit(status)

@@ -166,6 +166,7 @@ def pixels_over(a, b, threshold, work, region=None):
         rgb.append(os.path.join(work, name))
         subprocess.run(["oiiotool", image, "--ch", "R,G,B", *cut, "-o", rgb[-1]], check=True)
     a, b = rgb
-    out = subprocess.run(["idiff", "-fail", str(threshold), a, b], capture_output=True, text=True).stdout
-    found = re.search(r"(\d+) pixels \([0-9.]+%\) over " + re.escape(f"{threshold:g}"), out)
+    limit = f"{threshold:g}"  # idiff prints the threshold as it was given
+    out = subprocess.run(["idiff", "-fail", limit, a, b], capture_output=True, text=True).stdout
+    found = re.search(r"(\d+) pixels \([0-9.]+%\) over " + re.escape(limit), out)
     return int(found.group(1)) if found else (0 if "PASS" in out else None)
