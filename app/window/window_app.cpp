@@ -390,7 +390,9 @@ class WindowApp {
                              (steady_ns() - start) / 1e6});
     if (sample == 0) samples_ = 0;
     if (!advance) return;
-    refine_due_ = scale < 1.0;  // at rest, the picture is drawn again at full size
+    // At rest, the picture is drawn again at full size, to be refined. Not a
+    // feedback project's: that would advance its buffers while paused.
+    refine_due_ = scale < 1.0 || (moving && options_.refine > 1 && !project_.has_feedback());
     ++frames_drawn_;
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
     dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
@@ -666,7 +668,7 @@ class WindowApp {
   };
   ScaleController budget_;
   std::optional<Picture> drawing_;
-  bool refine_due_ = false;     // the last picture was scaled down: at rest, draw it at full size
+  bool refine_due_ = false;     // the last picture moved: at rest, draw it at full size
   int samples_ = 0;             // supersamples the kept picture holds of the picture at rest; 0: not at rest
   bool program_drawn_ = false;  // the current program has drawn a tile (the driver has compiled it)
   bool too_slow_ = false;       // the watchdog stopped the current program
