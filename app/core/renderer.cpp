@@ -1,6 +1,8 @@
 #include "core/renderer.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "core/supersampling.h"
@@ -30,6 +32,19 @@ Renderer::Renderer() : vao_(gl::make_vertex_array()) {
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
   max_tile_ = std::max(1, std::min({max_size, viewport[0], viewport[1], 8192}));
+  Source mean;
+  mean.version_line = "#version 450 core";
+  mean.text = mean.version_line +
+              "\nuniform sampler2D sample_;\nout vec4 color;\n"
+              "void main() { color = texelFetch(sample_, ivec2(gl_FragCoord.xy), 0); }\n";
+  mean.files = {"<host: add_sample>"};
+  Diagnostics unexpected;
+  mean_ = Program::build(mean, &unexpected);
+  if (!mean_) {  // the host's own four lines: a driver that rejects them cannot draw anything
+    std::fprintf(stderr, "raymarching: error: the driver rejects the host's sample pass: %s\n", join(unexpected).c_str());
+    std::abort();
+  }
+  mean_->set_sampler("sample_", 0);
 }
 
 void Renderer::draw(const Program& program, const FrameInputs& in, const ChannelInputs& channels, glm::ivec2 size) const {
@@ -46,31 +61,44 @@ void Renderer::draw(const Program& program, const FrameInputs& in, const Channel
   glViewport(0, 0, size.x, size.y);
   glUseProgram(program.id());
   glBindVertexArray(vao_.get());
-  const bool blend = in.sample > 0;
-  if (blend) {  // mean' = mean + (sample - mean) * weight
-    glEnable(GL_BLEND);
-    glBlendColor(0.0f, 0.0f, 0.0f, sample_weight(in.sample));
-    glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
-  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  if (blend) glDisable(GL_BLEND);
+}
+
+void Renderer::add_sample(GLuint sample, int index, glm::ivec2 size) const {
+  glViewport(0, 0, size.x, size.y);
+  glUseProgram(mean_->id());
+  glBindTextureUnit(0, sample);
+  glBindSampler(0, 0);
+  glBindVertexArray(vao_.get());
+  glEnable(GL_BLEND);  // mean * (1 - weight) + sample * weight
+  glBlendColor(0.0f, 0.0f, 0.0f, sample_weight(index));
+  glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
 }
 
 Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,
                              int samples) const {
-  // Every sample of a tile, one after the other into its float target.
-  auto draw_samples = [&](glm::ivec2 part) {
+  // Every sample of a tile: the first into its target, each later one into
+  // a target of its own and then into the mean.
+  auto draw_samples = [&](const RenderTarget& target, glm::ivec2 part) {
+    std::optional<RenderTarget> extra;
     for (int s = 0; s < samples; ++s) {
       inputs.sample = s;
+      if (s > 0 && !extra) extra.emplace(part.x, part.y);
+      (s == 0 ? target : *extra).bind();
       draw(program, inputs, channels, part);
+      if (s > 0) {
+        target.bind();
+        add_sample(extra->texture(), s, part);
+      }
       if (samples > 1) glFinish();  // bound the work queued on software renderers
     }
   };
   const int tile = max_tile_;
   if (size.x <= tile && size.y <= tile) {
     RenderTarget target(size.x, size.y);
-    target.bind();
-    draw_samples(size);
+    draw_samples(target, size);
     return target.read();
   }
   Image full{size.x, size.y, std::vector<float>(static_cast<size_t>(size.x) * size.y * 4)};
@@ -78,9 +106,8 @@ Image Renderer::render_image(const Program& program, FrameInputs inputs, const C
     for (int x0 = 0; x0 < size.x; x0 += tile) {
       const glm::ivec2 part(std::min(tile, size.x - x0), std::min(tile, size.y - y0));
       RenderTarget target(part.x, part.y);
-      target.bind();
       inputs.frag_coord_offset = glm::vec2(x0, y0);
-      draw_samples(part);
+      draw_samples(target, part);
       glFinish();  // bound the work queued per tile on software renderers
       Image piece = target.read();
       // piece row 0 is its top, which is full-image row size.y - (y0 + part.y).

@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,6 +21,7 @@ class RenderTarget {
   RenderTarget(int width, int height);
   void bind() const;
   GLuint framebuffer() const { return fbo_.get(); }
+  GLuint texture() const { return color_.get(); }
   Image read() const;
   int width() const { return width_; }
   int height() const { return height_; }
@@ -43,10 +45,15 @@ class Renderer {
  public:
   Renderer();  // needs a current GL context
   // Sets every input the program reads and draws over the bound framebuffer's
-  // (0,0,size) viewport. A supersample (inputs.sample > 0) is blended into
-  // the running mean of the samples already there (core/supersampling.h):
-  // a float target keeps that mean exact.
+  // (0,0,size) viewport. inputs.sample only moves gl_FragCoord: a supersample
+  // is drawn into a target of its own, then added to the mean by add_sample().
   void draw(const Program& program, const FrameInputs& inputs, const ChannelInputs& channels, glm::ivec2 size) const;
+  // Adds supersample `index` (a float texture of the target's size, drawn
+  // over the same viewport) to the running mean of the samples before it in
+  // the bound framebuffer: mean + (sample - mean) / (index + 1). A pass of
+  // the host's own, so that the shader itself is never drawn with blending,
+  // which llvmpipe would compile it again for (hundreds of ms on real scenes).
+  void add_sample(GLuint sample, int index, glm::ivec2 size) const;
 
   // Renders offscreen at `size`, in tiles no larger than the driver allows,
   // each the mean of `samples` supersamples (1: the pixel centres alone).
@@ -59,6 +66,7 @@ class Renderer {
 
  private:
   gl::VertexArray vao_;
+  std::optional<Program> mean_;  // add_sample()'s pass
   int max_tile_ = 4096;
 };
 
