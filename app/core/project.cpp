@@ -129,6 +129,7 @@ Source check_project(const ProjectFiles& from, const SourceOptions& options, Dia
 
 ReloadStatus Project::reload() {
   diagnostics_.clear();
+  times_ = {};
   std::array<bool, 4> channels_given{};
   for (size_t c = 0; c < 4; ++c) channels_given[c] = !channel_overrides_[c].empty();
   bool changed = false;
@@ -139,6 +140,7 @@ ReloadStatus Project::reload() {
       [&](const fs::path& file) -> const Source* {
         Scene& scene = scene_for(file);
         const ReloadStatus status = scene.prepare();
+        times_ += scene.times();
         if (status == ReloadStatus::Swapped) swapped.push_back(file);
         const Diagnostics& diags = scene.latest_diagnostics();
         diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());

@@ -91,6 +91,7 @@ class Project {
   int generation() const { return generation_; }  // counts swaps
   // The passes the latest swap compiled anew (the others kept their programs).
   const std::vector<fs::path>& rebuilt() const { return rebuilt_; }
+  const ReloadTimes& times() const { return times_; }  // of the latest reload(), every pass's summed
 
   // What changes the picture from frame to frame, over all passes: a pass
   // that reads a previous frame (itself or a later buffer) is animated.
@@ -117,6 +118,7 @@ class Project {
   std::map<fs::path, std::unique_ptr<Scene>> scenes_;
   std::vector<Pass> passes_;
   std::vector<fs::path> rebuilt_;
+  ReloadTimes times_;
   Diagnostics diagnostics_;
   int generation_ = 0;
 };

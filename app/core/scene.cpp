@@ -1,5 +1,7 @@
 #include "core/scene.h"
 
+#include <chrono>
+
 #include "core/check.h"
 #include "core/knobs.h"
 
@@ -29,9 +31,20 @@ void Scene::cache(Built built) {
   if (cache_.size() > kCacheSize) cache_.erase(cache_.begin());
 }
 
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
 ReloadStatus Scene::prepare() {
   discard();
+  times_ = {};
+  auto start = std::chrono::steady_clock::now();
   Source source = preprocess(path_, options_, files_);
+  times_.preprocess = ms_since(start);
   watch_ = source.watch;
   if (source.ok() && attempted_ && source.text == attempted_text_) return ReloadStatus::Unchanged;
   attempted_ = source.ok();
@@ -48,13 +61,17 @@ ReloadStatus Scene::prepare() {
     return ReloadStatus::Swapped;
   }
   std::string active;
+  start = std::chrono::steady_clock::now();
   Diagnostics diags = validate(source, &active, knob_probes());
+  times_.validate = ms_since(start);
   if (count_errors(diags) > 0) {
     diagnostics_ = std::move(diags);
     return ReloadStatus::Failed;
   }
   Diagnostics driver;
+  start = std::chrono::steady_clock::now();
   std::optional<Program> built = Program::build(source, &driver);
+  times_.driver = ms_since(start);
   if (!built) {
     diagnostics_ = std::move(driver);
     return ReloadStatus::Failed;

@@ -10,6 +10,17 @@
 
 namespace rm {
 
+// Where a reload's time went, in ms: for `-v` and the reload benchmark.
+struct ReloadTimes {
+  double preprocess = 0;  // reading the files, #include, the wrapper
+  double validate = 0;    // glslang, in its sandboxed child
+  double driver = 0;      // the driver's compile and link
+  ReloadTimes& operator+=(const ReloadTimes& o) {
+    preprocess += o.preprocess, validate += o.validate, driver += o.driver;
+    return *this;
+  }
+};
+
 enum class ReloadStatus {
   Swapped,    // a new program is running
   Unchanged,  // the combined source is the same as last attempt: nothing done
@@ -52,6 +63,7 @@ class Scene {
   // Every file of the latest attempt, including includes not found yet.
   const std::vector<fs::path>& watch_list() const { return watch_; }
   int generation() const { return generation_; }  // counts swaps
+  const ReloadTimes& times() const { return times_; }  // of the latest prepare()
 
  private:
   fs::path path_;
@@ -65,6 +77,7 @@ class Scene {
   Diagnostics diagnostics_;
   std::vector<fs::path> watch_;
   int generation_ = 0;
+  ReloadTimes times_;
   // Programs built before, by final text, oldest first; at most kCacheSize.
   struct Built {
     std::string text;

@@ -42,6 +42,25 @@ std::string number(double v) {
   return buf;
 }
 
+const char* colour_of(size_t i) { return kColours[i % (sizeof kColours / sizeof *kColours)]; }
+
+// The document's start: white ground and the title.
+std::string begin_svg(const std::string& title, double height) {
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number(kWidth) + "\" height=\"" +
+                    number(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  return svg + "<text x=\"" + number(kLeft) + "\" y=\"24\" font-size=\"15\">" + escape(title) + "</text>\n";
+}
+
+// Series i's colour and name, right of the plot.
+std::string legend_entry(size_t i, const std::string& name) {
+  const double ly = kTop + 14 + 18.0 * static_cast<double>(i);
+  return "<line x1=\"" + number(kWidth - kRight + 16) + "\" y1=\"" + number(ly - 4) + "\" x2=\"" +
+         number(kWidth - kRight + 36) + "\" y2=\"" + number(ly - 4) + "\" stroke=\"" + colour_of(i) +
+         "\" stroke-width=\"3\"/>\n<text x=\"" + number(kWidth - kRight + 42) + "\" y=\"" + number(ly) + "\">" +
+         escape(name) + "</text>\n";
+}
+
 }  // namespace
 
 std::string svg_chart(const std::string& title, const std::string& x_label, const std::string& y_label,
@@ -59,10 +78,7 @@ std::string svg_chart(const std::string& title, const std::string& x_label, cons
   auto px = [&](double x) { return kLeft + (x - x0) / (x1 - x0) * plot_w; };
   auto py = [&](double y) { return kTop + (1.0 - (y - y0) / (y1 - y0)) * plot_h; };
 
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number(kWidth) + "\" height=\"" +
-                    number(kHeight) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
-  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + number(kLeft) + "\" y=\"24\" font-size=\"15\">" + escape(title) + "</text>\n";
+  std::string svg = begin_svg(title, kHeight);
   for (double t : ticks(x0, x1)) {
     svg += "<line x1=\"" + number(px(t)) + "\" y1=\"" + number(kTop) + "\" x2=\"" + number(px(t)) + "\" y2=\"" +
            number(kTop + plot_h) + "\" stroke=\"#eee\"/>\n";
@@ -82,7 +98,7 @@ std::string svg_chart(const std::string& title, const std::string& x_label, cons
   svg += "<text transform=\"translate(18," + number(kTop + plot_h / 2) + ") rotate(-90)\" text-anchor=\"middle\">" +
          escape(y_label) + "</text>\n";
   for (size_t i = 0; i < series.size(); ++i) {
-    const std::string colour = kColours[i % (sizeof kColours / sizeof *kColours)];
+    const std::string colour = colour_of(i);
     std::string line;
     for (auto [x, y] : series[i].points)
       if (std::isfinite(x) && std::isfinite(y)) line += number(px(x)) + "," + number(py(y)) + " ";
@@ -90,13 +106,55 @@ std::string svg_chart(const std::string& title, const std::string& x_label, cons
     for (auto [x, y] : series[i].points)
       if (std::isfinite(x) && std::isfinite(y))
         svg += "<circle cx=\"" + number(px(x)) + "\" cy=\"" + number(py(y)) + "\" r=\"3\" fill=\"" + colour + "\"/>\n";
-    const double ly = kTop + 14 + 18.0 * static_cast<double>(i);
-    svg += "<line x1=\"" + number(kWidth - kRight + 16) + "\" y1=\"" + number(ly - 4) + "\" x2=\"" +
-           number(kWidth - kRight + 36) + "\" y2=\"" + number(ly - 4) + "\" stroke=\"" + colour +
-           "\" stroke-width=\"3\"/>\n";
-    svg += "<text x=\"" + number(kWidth - kRight + 42) + "\" y=\"" + number(ly) + "\">" + escape(series[i].name) +
-           "</text>\n";
+    svg += legend_entry(i, series[i].name);
   }
+  return svg + "</svg>\n";
+}
+
+std::string svg_stacked_bars(const std::string& title, const std::string& value_label,
+                             const std::vector<std::string>& categories, const std::vector<BarSeries>& series) {
+  constexpr double kRow = 26, kBar = 18, kNames = 150;
+  auto value = [&](size_t s, size_t c) {
+    const auto& v = series[s].values;
+    return c < v.size() && std::isfinite(v[c]) && v[c] > 0 ? v[c] : 0.0;
+  };
+  double top = 0;
+  for (size_t c = 0; c < categories.size(); ++c) {
+    double sum = 0;
+    for (size_t s = 0; s < series.size(); ++s) sum += value(s, c);
+    top = std::max(top, sum);
+  }
+  if (top <= 0) top = 1;
+  const std::vector<double> marks = ticks(0, top * 1.05);
+  const double hi = std::max(top, marks.back());
+  const double left = kLeft + kNames, plot_w = kWidth - left - kRight;
+  const double plot_h = kRow * static_cast<double>(categories.size()) + 8;
+  auto px = [&](double v) { return left + v / hi * plot_w; };
+
+  std::string svg = begin_svg(title, kTop + plot_h + kBottom);
+  for (double t : marks) {
+    svg += "<line x1=\"" + number(px(t)) + "\" y1=\"" + number(kTop) + "\" x2=\"" + number(px(t)) + "\" y2=\"" +
+           number(kTop + plot_h) + "\" stroke=\"#eee\"/>\n";
+    svg += "<text x=\"" + number(px(t)) + "\" y=\"" + number(kTop + plot_h + 16) + "\" text-anchor=\"middle\">" +
+           number(t) + "</text>\n";
+  }
+  for (size_t c = 0; c < categories.size(); ++c) {
+    const double y = kTop + 4 + kRow * static_cast<double>(c);
+    svg += "<text x=\"" + number(left - 8) + "\" y=\"" + number(y + kBar - 5) + "\" text-anchor=\"end\">" +
+           escape(categories[c]) + "</text>\n";
+    double at = 0;
+    for (size_t s = 0; s < series.size(); ++s) {
+      const double v = value(s, c);
+      svg += "<rect x=\"" + number(px(at)) + "\" y=\"" + number(y) + "\" width=\"" + number(px(at + v) - px(at)) +
+             "\" height=\"" + number(kBar) + "\" fill=\"" + colour_of(s) + "\"/>\n";
+      at += v;
+    }
+  }
+  svg += "<rect x=\"" + number(left) + "\" y=\"" + number(kTop) + "\" width=\"" + number(plot_w) + "\" height=\"" +
+         number(plot_h) + "\" fill=\"none\" stroke=\"#333\"/>\n";
+  svg += "<text x=\"" + number(left + plot_w / 2) + "\" y=\"" + number(kTop + plot_h + 40) +
+         "\" text-anchor=\"middle\">" + escape(value_label) + "</text>\n";
+  for (size_t s = 0; s < series.size(); ++s) svg += legend_entry(s, series[s].name);
   return svg + "</svg>\n";
 }
 

@@ -1,6 +1,7 @@
-// SvgChart: a line chart as an SVG document, for the accuracy report (image
-// error against time, one curve per knob). Small and dependency-free: axes
-// with round ticks, one polyline with dots per series, a legend.
+// SvgChart: charts as SVG documents, for the reports in docs/. A line chart
+// (the accuracy report: image error against time, one curve per knob) and
+// stacked bars (where a reload's time goes, per example). Small and
+// dependency-free: axes with round ticks, a legend.
 #pragma once
 #include <string>
 #include <utility>
@@ -15,5 +16,14 @@ struct ChartSeries {
 
 std::string svg_chart(const std::string& title, const std::string& x_label, const std::string& y_label,
                       const std::vector<ChartSeries>& series);
+
+// One horizontal bar per category, made of one segment per series, in order.
+struct BarSeries {
+  std::string name;
+  std::vector<double> values;  // one per category; a missing or negative one counts 0
+};
+
+std::string svg_stacked_bars(const std::string& title, const std::string& value_label,
+                             const std::vector<std::string>& categories, const std::vector<BarSeries>& series);
 
 }  // namespace rm

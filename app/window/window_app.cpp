@@ -206,7 +206,9 @@ class WindowApp {
       if (status == ReloadStatus::Swapped) {
         std::cerr << " (rebuilt:";
         for (const fs::path& pass : project_.rebuilt()) std::cerr << ' ' << pass.filename().string();
-        std::cerr << ')';
+        const ReloadTimes& t = project_.times();
+        std::cerr << "; preprocess " << t.preprocess << " ms, glslang " << t.validate << " ms, driver compile+link "
+                  << t.driver << " ms)";
       }
       std::cerr << '\n';
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
@@ -425,9 +427,12 @@ class WindowApp {
     bool straight = false;
     do {
       const glm::ivec4 tile = p.plan.next();
-      // A picture at rest that will be refined gathers its samples in the kept picture.
-      const bool refined = p.resting && options_.refine > 1;
-      straight = p.tiles == 0 && tile == glm::ivec4(0, 0, p.size) && p.scale == 1.0 && !ui_.visible() && !refined;
+      // With refinement on, every picture goes into the kept float picture,
+      // where a picture at rest gathers its samples: llvmpipe compiles a
+      // shader again for each target format (250 ms for tori), and one
+      // format spares the window that stall when the picture comes to rest.
+      straight = p.tiles == 0 && tile == glm::ivec4(0, 0, p.size) && p.scale == 1.0 && !ui_.visible() &&
+                 options_.refine <= 1;
       if (straight) picture_.forget();
       const GLuint target = straight ? 0 : picture_.target(p.size);
       const long long start = steady_ns();
@@ -444,6 +449,9 @@ class WindowApp {
         return false;
       }
       if (!program_drawn_ && probe) p.compile_ms = ms;
+      if (!program_drawn_ && options_.verbose)
+        std::cerr << "raymarching: first draw of generation " << project_.generation() << ": a " << tile.z << "x"
+                  << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";
       program_drawn_ = true;
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
     if (p.plan.done()) finish_picture(straight);

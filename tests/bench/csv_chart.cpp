@@ -1,7 +1,9 @@
 // Draws columns of a CSV as an SVG line chart with the project's own chart
 // (headless/svg_chart), for the reports in docs/.
-// Usage: csv_chart TITLE Y_LABEL COLUMN... < table.csv > chart.svg
+// Usage: csv_chart [--bars] TITLE Y_LABEL COLUMN... < table.csv > chart.svg
 // The first column is x and names the x axis; each COLUMN becomes a curve.
+// With --bars the first column names the rows instead, and each row is a bar
+// of the COLUMNs stacked (Y_LABEL then labels the values).
 #include <algorithm>
 #include <iostream>
 #include <sstream>
@@ -22,8 +24,10 @@ std::vector<std::string> split(const std::string& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool bars = argc > 1 && std::string(argv[1]) == "--bars";
+  if (bars) --argc, ++argv;
   if (argc < 4) {
-    std::cerr << "usage: csv_chart TITLE Y_LABEL COLUMN... < table.csv > chart.svg\n";
+    std::cerr << "usage: csv_chart [--bars] TITLE Y_LABEL COLUMN... < table.csv > chart.svg\n";
     return 2;
   }
   std::string line;
@@ -40,12 +44,23 @@ int main(int argc, char** argv) {
     columns.push_back(static_cast<size_t>(it - header.begin()));
     series.push_back({argv[i], {}});
   }
+  std::vector<std::string> rows;
   while (std::getline(std::cin, line)) {
     const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size()) continue;
+    rows.push_back(cells[0]);
     for (size_t s = 0; s < columns.size(); ++s)
-      series[s].points.emplace_back(std::stod(cells[0]), std::stod(cells[columns[s]]));
+      series[s].points.emplace_back(bars ? 0.0 : std::stod(cells[0]), std::stod(cells[columns[s]]));
   }
-  std::cout << rm::svg_chart(argv[1], header[0], argv[2], series);
+  if (!bars) {
+    std::cout << rm::svg_chart(argv[1], header[0], argv[2], series);
+    return 0;
+  }
+  std::vector<rm::BarSeries> stacked;
+  for (const rm::ChartSeries& s : series) {
+    stacked.push_back({s.name, {}});
+    for (auto [unused, value] : s.points) stacked.back().values.push_back(value);
+  }
+  std::cout << rm::svg_stacked_bars(argv[1], argv[2], rows, stacked);
   return 0;
 }

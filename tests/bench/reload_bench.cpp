@@ -1,8 +1,6 @@
 // Benchmark behind docs/performance.md. Needs a display (run under xvfb-run):
 //   reload_bench RAYMARCHING SCENE_FOR_VALIDATION > docs/performance.md
 // Measures, with the real program in a real window:
-//   - reload latency: from the rename that saves a scene to the first frame
-//     of the new program being presented (50 saves, median and p95);
 //   - cold start: from spawning the program to its first presented frame;
 //   - glslang validation (preprocess + check) of the largest shader we ship.
 #include <fcntl.h>
@@ -87,15 +85,10 @@ class Child {
 
 long long presented_at(const std::string& line) { return std::stoll(line.substr(line.rfind(' ') + 1)); }
 
-void save_by_rename(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  std::ofstream(tmp) << text;
-  fs::rename(tmp, path);
-}
-
-std::string scene_text(int version) {
+// A 4-line scene: what the host itself costs a start, beside the shader.
+std::string scene_text() {
   return "void mainImage(out vec4 c, in vec2 f) {\n  vec2 uv = f / iResolution.xy;\n"
-         "  c = vec4(uv, fract(" + std::to_string(version) + ".0 * 0.137 + iTime), 1.0);\n}\n";
+         "  c = vec4(uv, fract(0.137 + iTime), 1.0);\n}\n";
 }
 
 double percentile(std::vector<double> v, double q) {
@@ -119,28 +112,12 @@ int main(int argc, char** argv) {
   // Cold start, five times.
   std::vector<double> cold_ms;
   for (int i = 0; i < 5; ++i) {
-    std::ofstream(scene) << scene_text(0);
+    std::ofstream(scene) << scene_text();
     const long long start = now_ns();
     Child child({binary, scene.string(), "--size", "320x180", "-v"});
     auto line = child.wait_line("presented generation 1", std::chrono::seconds(20));
     if (!line) return std::fprintf(stderr, "no first frame\n"), 1;
     cold_ms.push_back((presented_at(*line) - start) / 1e6);
-  }
-
-  // Reload latency over 50 saves.
-  std::vector<double> reload_ms;
-  {
-    std::ofstream(scene) << scene_text(0);
-    Child child({binary, scene.string(), "--size", "320x180", "-v"});
-    if (!child.wait_line("presented generation 1", std::chrono::seconds(20))) return 1;
-    for (int i = 1; i <= 50; ++i) {
-      usleep(50000);  // saves spaced as a person saves, not a burst
-      const long long saved = now_ns();
-      save_by_rename(scene, scene_text(i));
-      auto line = child.wait_line("presented generation " + std::to_string(i + 1) + " ", std::chrono::seconds(10));
-      if (!line) return std::fprintf(stderr, "save %d never presented\n", i), 1;
-      reload_ms.push_back((presented_at(*line) - saved) / 1e6);
-    }
   }
 
   // glslang validation of the largest shader, in-process.
@@ -161,8 +138,6 @@ int main(int argc, char** argv) {
 
   fs::remove_all(dir);
   std::printf("| measure | median | p95 | runs |\n|---|---:|---:|---:|\n");
-  std::printf("| reload latency: save (rename) to first presented frame | %.1f ms | %.1f ms | %zu |\n",
-              percentile(reload_ms, 0.5), percentile(reload_ms, 0.95), reload_ms.size());
   std::printf("| cold start to first presented frame | %.1f ms | %.1f ms | %zu |\n", percentile(cold_ms, 0.5),
               percentile(cold_ms, 0.95), cold_ms.size());
   std::printf("| glslang preprocess + validate, %s (%zu lines, %zu bytes after includes) | %.1f ms | %.1f ms | %zu |\n",

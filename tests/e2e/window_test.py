@@ -258,7 +258,7 @@ def project_session():
 
     save_by_rename(os.path.join(work, "buffer_b.frag"), CONSTANT_B.replace("0.25", "0.75"))
     check("a save to one buffer pass rebuilds only it",
-          wait_for(lambda: "reload ok generation 2 (rebuilt: buffer_b.frag)" in open(err_path).read()),
+          wait_for(lambda: "reload ok generation 2 (rebuilt: buffer_b.frag;" in open(err_path).read()),
           open(err_path).read())
     wait_for(lambda: "presented generation 2" in open(err_path).read())
     shot = take_screenshot(window, out_path)

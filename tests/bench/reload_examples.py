@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""Reload latency of every example, as a person editing it sees it.
+Run as: xvfb-run -a python3 reload_examples.py RAYMARCHING CSV_PATH SCENE...
+
+Each scene's folder is copied to a temporary one, and the copy opens in an
+800x450 window (the default size; interface hidden, -v). Then five fresh
+edits are saved by rename, as editors save, each a new line at the end of
+the scene, and three saves go back to a text saved before. A fresh edit is
+compiled from scratch: Mesa's shader cache is turned off
+(MESA_SHADER_CACHE_DISABLE), since a real edit never finds its program
+there. Per save, from the -v log (CLOCK_MONOTONIC times): the first
+present of the new program (its first tiles) and its first whole picture;
+where the time went: preprocess, glslang, the driver's compile and link,
+the first draw (llvmpipe compiles the shader's machine code during it).
+Prints a Markdown table of medians; writes the stages as CSV_PATH.
+"""
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
+from harness import save_by_rename, wait_for  # noqa: E402
+
+FRESH, BACK = 5, 3
+RELOAD = re.compile(r"reload ok generation (\d+) \(rebuilt:[^;]*; preprocess ([0-9.e-]+) ms, glslang ([0-9.e-]+) ms, "
+                    r"driver compile\+link ([0-9.e-]+) ms\)")
+FIRST_DRAW = re.compile(r"first draw of generation (\d+): a \d+x\d+ tile, ([0-9.e-]+) ms")
+PRESENTED = re.compile(r"presented generation (\d+) at (\d+)")
+PICTURE = re.compile(r"picture \d+x\d+ scale [0-9.e-]+ in \d+ tiles?, [0-9.e-]+ ms, done at (\d+)")
+
+
+def log(path):
+    return open(path).read()
+
+
+def reload_of(err, generation, saved):
+    """The stages of the reload to `generation`, once its whole picture is done."""
+    text = log(err)
+    reload = next((m for m in RELOAD.finditer(text) if int(m.group(1)) == generation), None)
+    present = next((m for m in PRESENTED.finditer(text) if int(m.group(1)) == generation), None)
+    if not reload or not present:
+        return None
+    whole = next((int(m.group(1)) / 1e9 for m in PICTURE.finditer(text, present.start())), None)
+    if whole is None:
+        return None
+    draw = next((float(m.group(2)) for m in FIRST_DRAW.finditer(text) if int(m.group(1)) == generation), 0.0)
+    return {"present": int(present.group(2)) / 1e9 - saved, "whole": whole - saved,
+            "preprocess": float(reload.group(2)), "glslang": float(reload.group(3)),
+            "driver": float(reload.group(4)), "draw": draw}
+
+
+def session(binary, scene, work):
+    """Times of each fresh save and of each save back to an older text."""
+    folder = os.path.join(work, os.path.basename(os.path.dirname(scene)) + "-copy")
+    shutil.rmtree(folder, ignore_errors=True)
+    shutil.copytree(os.path.dirname(scene), folder, symlinks=True)
+    copy = os.path.join(folder, os.path.basename(scene))
+    original = log(copy)
+    err = os.path.join(work, "stderr.txt")
+    env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
+    with open(err, "w") as e, open(os.devnull, "w") as out:
+        proc = subprocess.Popen([binary, copy, "--no-ui", "-v"], stdout=out, stderr=e, cwd=folder, env=env)
+    try:
+        if not wait_for(lambda: "presented generation 1 " in log(err), timeout=60):
+            return None
+        time.sleep(1.0)
+        texts, fresh, back = [original], [], []
+        for i in range(FRESH + BACK):
+            if i < FRESH:
+                text = original + f"\n// edit {i + 1}\n"
+                texts.append(text)
+            else:  # back to a text the window has built before (its cache)
+                text = texts[-2] if (i - FRESH) % 2 == 0 else texts[-1]
+            generation = i + 2
+            saved = time.monotonic()
+            save_by_rename(copy, text)
+            times = wait_for(lambda: reload_of(err, generation, saved), timeout=60, step=0.01)
+            if not times:
+                print(f"{scene}: save {i + 1} never drew", file=sys.stderr)
+                return None
+            (fresh if i < FRESH else back).append(times)
+            time.sleep(0.5)
+        return fresh, back
+    finally:
+        proc.terminate()
+        proc.wait(timeout=30)
+
+
+def main():
+    binary, csv_path, scenes = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3:]
+    work = tempfile.mkdtemp(prefix="rm-reload-")
+    print("| scene | save to first present, ms | save to whole picture, ms | preprocess | glslang | "
+          "driver compile+link | first draw (16x16) | a text built before: save to whole picture, ms |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    with open(csv_path, "w") as csv:
+        csv.write("scene,preprocess,glslang,driver compile+link,first draw,the rest: watcher + tiles + present\n")
+        for scene in scenes:
+            name = os.path.basename(os.path.dirname(scene)) + "/" + os.path.basename(scene) \
+                if os.path.basename(scene) == "image.frag" else os.path.basename(scene)
+            result = session(binary, os.path.abspath(scene), work)
+            if not result:
+                continue
+            fresh, back = result
+            med = {k: statistics.median(t[k] for t in fresh) for k in fresh[0]}
+            back_whole = statistics.median(t["whole"] for t in back)
+            print(f"| {name} | {med['present'] * 1000:.0f} | {med['whole'] * 1000:.0f} | {med['preprocess']:.1f} | "
+                  f"{med['glslang']:.1f} | {med['driver']:.1f} | {med['draw']:.1f} | {back_whole * 1000:.0f} |")
+            stages = med["preprocess"] + med["glslang"] + med["driver"] + med["draw"]
+            csv.write(f"{name},{med['preprocess']:.1f},{med['glslang']:.1f},{med['driver']:.1f},{med['draw']:.1f},"
+                      f"{max(0.0, med['whole'] * 1000 - stages):.1f}\n")
+            print(f"{name}: done", file=sys.stderr)
+    shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
