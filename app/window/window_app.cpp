@@ -461,7 +461,10 @@ class WindowApp {
   void finish_picture(bool straight) {
     const Picture& p = *drawing_;
     // The picture kept at rest, at full size, now holds this many samples.
-    samples_ = p.resting && p.scale == 1.0 && !straight ? p.inputs.sample + 1 : 0;
+    // A feedback project's moving picture counts too: it is never drawn
+    // again at rest (that would advance its buffers), so once the clock
+    // stops, its last picture is the one refined.
+    samples_ = (p.resting || project_.has_feedback()) && p.scale == 1.0 && !straight ? p.inputs.sample + 1 : 0;
     model_.figures.samples = samples_;
     if (p.inputs.sample > 0) {  // the budget measured sample 0's picture, with its buffers
       frame_ms_ = p.plan.drawn_ms();
