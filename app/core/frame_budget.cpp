@@ -7,23 +7,31 @@ namespace rm {
 
 double ScaleController::scale_of(int step) { return std::pow(2.0, -step / 8.0); }
 
-double ScaleController::full_frame_ms() const {
-  if (count_ == 0) return 0;
-  if (count_ == 1) return estimates_[0];
-  if (count_ == 2) return (estimates_[0] + estimates_[1]) / 2;
-  std::array<double, 3> e = estimates_;
-  std::sort(e.begin(), e.end());
-  return e[1];
+namespace {
+
+// The median of the first `count` values (the mean of two).
+double median_of(std::array<double, 3> v, int count) {
+  if (count == 0) return 0;
+  if (count == 1) return v[0];
+  if (count == 2) return (v[0] + v[1]) / 2;
+  std::sort(v.begin(), v.end());
+  return v[1];
 }
 
-void ScaleController::measured(double scale, double ms) {
+}  // namespace
+
+double ScaleController::full_frame_ms() const { return median_of(estimates_, count_); }
+double ScaleController::overhead_ms() const { return median_of(overheads_, count_); }
+
+void ScaleController::measured(double scale, double ms, double overhead_ms) {
   estimates_[next_] = ms / (scale * scale);
+  overheads_[next_] = std::max(0.0, overhead_ms);
   next_ = (next_ + 1) % estimates_.size();
   count_ = std::min(count_ + 1, 3);
-  const double full = full_frame_ms();
+  const double full = full_frame_ms(), fixed = this->overhead_ms();
   auto first_step_under = [&](double share, int to) {  // the largest picture under `share` of the budget
     for (int k = 0; k < to; ++k)
-      if (full * scale_of(k) * scale_of(k) <= share * budget_ms_) return k;
+      if (full * scale_of(k) * scale_of(k) + fixed <= share * budget_ms_) return k;
     return to;
   };
   // Over budget where it is: down at once, as far as the estimate says.

@@ -15,7 +15,10 @@ namespace rm {
 // of a ladder 2^(-k/8). The scale goes down as soon as that median is over
 // budget, and up only when three frames in a row say a larger step would
 // take at most kRaiseAt of the budget: the band between kRaiseAt and kHoldAt
-// is wider than one step, so it cannot oscillate between two.
+// is wider than one step, so it cannot oscillate between two. A frame also
+// costs what does not grow with its pixels (the present, the events): the
+// window measures that overhead between frames, and the steps are chosen
+// so that drawing and overhead together fit.
 class ScaleController {
  public:
   static constexpr int kSteps = 25;          // 1, 2^-1/8, ..., 1/8: each step 19% more pixels
@@ -28,8 +31,11 @@ class ScaleController {
   static double scale_of(int step);
   double budget_ms() const { return budget_ms_; }
 
-  // A frame drawn at `scale` took `ms`.
-  void measured(double scale, double ms);
+  // A frame drawn at `scale` took `ms` to draw, and `overhead_ms` besides
+  // (the rest of the interval since the frame before; 0: not known).
+  void measured(double scale, double ms, double overhead_ms = 0);
+  // The overhead the controller believes in: the median of the last three.
+  double overhead_ms() const;
   // The full-size cost the controller believes in; 0 before any frame.
   double full_frame_ms() const;
   // What a frame at `scale` is expected to take; 0 before any frame.
@@ -41,6 +47,7 @@ class ScaleController {
   double budget_ms_;
   int step_ = 0;
   std::array<double, 3> estimates_{};  // full-size ms of the last frames
+  std::array<double, 3> overheads_{};  // and what each cost besides its drawing
   size_t next_ = 0;                    // where the next estimate goes
   int count_ = 0;                      // how many of them are filled
   int raise_votes_ = 0;

@@ -100,6 +100,28 @@ TEST(ScaleController, AFixedCostThatNoScaleRemovesEndsAtTheLowestStep) {
   EXPECT_GT(c.predict_ms(0.125), kBudget) << "the window must then draw in tiles";
 }
 
+// The present and the events cost 8 ms a frame whatever the scale: drawing
+// and that overhead together hold the budget, where drawing alone at the
+// step it would pick without the overhead would not leave room for it.
+TEST(ScaleController, TheFrameOverheadCountsAgainstTheBudget) {
+  constexpr double kOverhead = 8.0;
+  ScaleController c(kBudget), blind(kBudget);
+  Noise noise{0.1};
+  std::vector<double> scales;
+  for (int i = 0; i < 100; ++i) {
+    const double s = c.scale();
+    scales.push_back(s);
+    c.measured(s, 240.0 * s * s * noise(), kOverhead * noise());
+    blind.measured(blind.scale(), 240.0 * blind.scale() * blind.scale());
+  }
+  for (size_t i = 3; i < scales.size(); ++i)
+    EXPECT_LE(240.0 * scales[i] * scales[i] + kOverhead, kBudget) << "frame " << i;
+  EXPECT_LE(changes(scales, 3), 0);
+  EXPECT_GT(240.0 * blind.scale() * blind.scale() + kOverhead, ScaleController::kHoldAt * kBudget)
+      << "without the overhead the same scene would be drawn larger";
+  EXPECT_NEAR(c.overhead_ms(), kOverhead, kOverhead * 0.1);
+}
+
 TEST(ScaleController, ForgetStartsAgainFromTheNextFrame) {
   ScaleController c(kBudget);
   run(c, 10, [](double s) { return 500.0 * s * s; });
