@@ -3,6 +3,7 @@
 # One list, so that a new dependency of core/source is added in one place.
 # program.cpp comes along because the host-input table sets uniforms on a
 # Program; the fuzz targets never call it, but it links against libepoxy.
+# supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's offset.
 set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/source.cpp
   ${CMAKE_CURRENT_LIST_DIR}/files.cpp
@@ -12,6 +13,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/channel_spec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/host_inputs.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/supersampling.cpp
   ${CMAKE_CURRENT_LIST_DIR}/program.cpp
   ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
 )
