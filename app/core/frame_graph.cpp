@@ -248,17 +248,7 @@ void FrameGraph::draw_image(const Project& project, const FrameInputs& in, glm::
     glEnable(GL_SCISSOR_TEST);
     glScissor(region.x, region.y, region.z, region.w);
   }
-  if (in.sample == 0) {
-    timed(project, image, [&] { renderer_.draw(*project.image_program(), in, inputs_of(project, image), size); });
-  } else {  // a supersample: drawn on its own, then added to the mean in `target`
-    if (!sample_ || glm::ivec2(sample_->width(), sample_->height()) != size) sample_.emplace(size.x, size.y);
-    timed(project, image, [&] {
-      sample_->bind();
-      renderer_.draw(*project.image_program(), in, inputs_of(project, image), size);
-      glBindFramebuffer(GL_FRAMEBUFFER, target);
-      renderer_.add_sample(sample_->texture(), in.sample, size);
-    });
-  }
+  timed(project, image, [&] { renderer_.draw(*project.image_program(), in, inputs_of(project, image), size); });
   if (part) glDisable(GL_SCISSOR_TEST);
 }
 

@@ -9,7 +9,6 @@
 #pragma once
 #include <array>
 #include <map>
-#include <optional>
 #include <vector>
 #include <string>
 
@@ -106,7 +105,6 @@ class FrameGraph {
   gl::Texture keyboard_texture_;
   gl::Texture black_[3];  // a transparent black texel per shape: flat, cube, volume
   gl::Sampler samplers_[3][2];  // [filter][wrap]
-  std::optional<RenderTarget> sample_;  // where draw_image() draws a supersample before adding it
   bool images_changed_ = false;
   bool timing_ = false, finish_ = false;
   std::vector<gl::Query> queries_;   // one per pass

@@ -48,6 +48,21 @@ Renderer::Renderer() : vao_(gl::make_vertex_array()) {
 }
 
 void Renderer::draw(const Program& program, const FrameInputs& in, const ChannelInputs& channels, glm::ivec2 size) const {
+  if (in.sample == 0) {
+    draw_pass(program, in, channels, size);
+    return;
+  }
+  GLint target = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+  if (!sample_ || glm::ivec2(sample_->width(), sample_->height()) != size) sample_.emplace(size.x, size.y);
+  sample_->bind();
+  draw_pass(program, in, channels, size);
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
+  add_sample(in.sample, size);
+}
+
+void Renderer::draw_pass(const Program& program, const FrameInputs& in, const ChannelInputs& channels,
+                         glm::ivec2 size) const {
   set_host_inputs(program, in);
   for (const UniformValue& u : in.uniforms) program.set(u.name, u.value.data(), static_cast<int>(u.value.size()));
   for (int i = 0; i < 4; ++i) {
@@ -64,10 +79,10 @@ void Renderer::draw(const Program& program, const FrameInputs& in, const Channel
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void Renderer::add_sample(GLuint sample, int index, glm::ivec2 size) const {
+void Renderer::add_sample(int index, glm::ivec2 size) const {
   glViewport(0, 0, size.x, size.y);
   glUseProgram(mean_->id());
-  glBindTextureUnit(0, sample);
+  glBindTextureUnit(0, sample_->texture());
   glBindSampler(0, 0);
   glBindVertexArray(vao_.get());
   glEnable(GL_BLEND);  // mean * (1 - weight) + sample * weight
@@ -79,19 +94,12 @@ void Renderer::add_sample(GLuint sample, int index, glm::ivec2 size) const {
 
 Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,
                              int samples) const {
-  // Every sample of a tile: the first into its target, each later one into
-  // a target of its own and then into the mean.
+  // Every sample of a tile into its target, the later ones into the mean.
   auto draw_samples = [&](const RenderTarget& target, glm::ivec2 part) {
-    std::optional<RenderTarget> extra;
     for (int s = 0; s < samples; ++s) {
       inputs.sample = s;
-      if (s > 0 && !extra) extra.emplace(part.x, part.y);
-      (s == 0 ? target : *extra).bind();
+      target.bind();
       draw(program, inputs, channels, part);
-      if (s > 0) {
-        target.bind();
-        add_sample(extra->texture(), s, part);
-      }
       if (samples > 1) glFinish();  // bound the work queued on software renderers
     }
   };

@@ -45,15 +45,10 @@ class Renderer {
  public:
   Renderer();  // needs a current GL context
   // Sets every input the program reads and draws over the bound framebuffer's
-  // (0,0,size) viewport. inputs.sample only moves gl_FragCoord: a supersample
-  // is drawn into a target of its own, then added to the mean by add_sample().
+  // (0,0,size) viewport. A supersample (inputs.sample > 0, core/supersampling.h)
+  // is added to the running mean of the samples already there: a float
+  // target keeps that mean exact. The scissor, if any, holds for both.
   void draw(const Program& program, const FrameInputs& inputs, const ChannelInputs& channels, glm::ivec2 size) const;
-  // Adds supersample `index` (a float texture of the target's size, drawn
-  // over the same viewport) to the running mean of the samples before it in
-  // the bound framebuffer: mean + (sample - mean) / (index + 1). A pass of
-  // the host's own, so that the shader itself is never drawn with blending,
-  // which llvmpipe would compile it again for (hundreds of ms on real scenes).
-  void add_sample(GLuint sample, int index, glm::ivec2 size) const;
 
   // Renders offscreen at `size`, in tiles no larger than the driver allows,
   // each the mean of `samples` supersamples (1: the pixel centres alone).
@@ -65,8 +60,18 @@ class Renderer {
   void limit_tile(int pixels) { max_tile_ = std::max(1, std::min(max_tile_, pixels)); }  // tests tiling
 
  private:
+  // The shader's own draw into the bound framebuffer.
+  void draw_pass(const Program& program, const FrameInputs& inputs, const ChannelInputs& channels,
+                 glm::ivec2 size) const;
+  // Adds `sample_` to the mean in the bound framebuffer: mean + (sample -
+  // mean) / (index + 1). A pass of the host's own, so that the shader itself
+  // is never drawn with blending, which llvmpipe would compile it again for
+  // (hundreds of ms on real scenes).
+  void add_sample(int index, glm::ivec2 size) const;
+
   gl::VertexArray vao_;
   std::optional<Program> mean_;  // add_sample()'s pass
+  mutable std::optional<RenderTarget> sample_;  // where a supersample is drawn before it is added
   int max_tile_ = 4096;
 };
 
