@@ -11,6 +11,7 @@
 #include <iostream>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <utility>
 
 #include "core/capture.h"
@@ -395,7 +396,7 @@ class WindowApp {
     if (!advance) return;
     // At rest, the picture is drawn again at full size, to be refined. Not a
     // feedback project's: that would advance its buffers while paused.
-    refine_due_ = scale < 1.0 || (moving && options_.refine > 1 && !project_.has_feedback());
+    rest_due_ = scale < 1.0 || (moving && options_.refine > 1 && !project_.has_feedback());
     ++frames_drawn_;
     // iMouse.w > 0 only in the frame of a press: the next frame must show it gone.
     dirty_ = use_.drag && inputs_.mouse.w > 0.0f;
@@ -470,9 +471,7 @@ class WindowApp {
     if (p.inputs.sample > 0) {  // the budget measured sample 0's picture, with its buffers
       frame_ms_ = p.plan.drawn_ms();
       model_.figures.tiles = p.tiles;
-      if (options_.verbose)
-        std::cerr << "raymarching: sample " << samples_ << " of " << options_.refine << " in " << p.tiles
-                  << (p.tiles == 1 ? " tile, " : " tiles, ") << frame_ms_ << " ms, done at " << steady_ns() << '\n';
+      log_done("sample " + std::to_string(samples_) + " of " + std::to_string(options_.refine));
       drawing_.reset();
       update_title(true);
       return;
@@ -488,11 +487,19 @@ class WindowApp {
     model_.figures.scale = p.scale;
     model_.figures.tiles = p.tiles;
     if (ui_.visible() && (model_.hud || !model_.knobs.empty()) && p.tiles == 1) take_figures(p.window.x, p.window.y);
-    if (options_.verbose)
-      std::cerr << "raymarching: picture " << p.size.x << "x" << p.size.y << " scale " << p.scale << " in "
-                << p.tiles << (p.tiles == 1 ? " tile, " : " tiles, ") << frame_ms_ << " ms, done at " << steady_ns()
-                << '\n';
+    std::ostringstream what;
+    what << "picture " << p.size.x << "x" << p.size.y << " scale " << p.scale;
+    log_done(what.str());
     drawing_.reset();
+  }
+
+  // -v: the picture in progress is done ("WHAT in N tiles, MS ms, done at
+  // NS"), in the one format the benchmarks read.
+  void log_done(const std::string& what) const {
+    if (!options_.verbose) return;
+    const int tiles = drawing_->tiles;
+    std::cerr << "raymarching: " << what << " in " << tiles << (tiles == 1 ? " tile, " : " tiles, ") << frame_ms_
+              << " ms, done at " << steady_ns() << '\n';
   }
 
   // The watchdog: a shader whose smallest tile takes longer than the limit
@@ -634,7 +641,7 @@ class WindowApp {
   // otherwise only after something it reads changed (or a screenshot is due).
   // Never while minimised: nobody sees it.
   bool redraw_needed() const {
-    return !iconified_ && !too_slow_ && (dirty_ || refine_due_ || (use_.time && !clock_.paused()));
+    return !iconified_ && !too_slow_ && (dirty_ || rest_due_ || (use_.time && !clock_.paused()));
   }
   // A picture at rest still gathering supersamples (--refine).
   bool refining() const {
@@ -686,7 +693,7 @@ class WindowApp {
   };
   ScaleController budget_;
   std::optional<Picture> drawing_;
-  bool refine_due_ = false;     // the last picture moved: at rest, draw it at full size
+  bool rest_due_ = false;     // the last picture moved: at rest, draw it at full size
   long long last_moving_done_ = 0;  // when the last moving picture was done (steady ns); 0: none just before
   int samples_ = 0;             // supersamples the kept picture holds of the picture at rest; 0: not at rest
   bool program_drawn_ = false;  // the current program has drawn a tile (the driver has compiled it)
