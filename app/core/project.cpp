@@ -128,6 +128,13 @@ Source check_project(const ProjectFiles& from, const SourceOptions& options, Dia
 }
 
 ReloadStatus Project::reload() {
+  const ReloadStatus status = prepare();
+  if (status == ReloadStatus::Swapped) commit();
+  return status;
+}
+
+ReloadStatus Project::prepare(const std::function<void(const Program&)>& on_built) {
+  pending_.reset();
   diagnostics_.clear();
   times_ = {};
   std::array<bool, 4> channels_given{};
@@ -139,7 +146,7 @@ ReloadStatus Project::reload() {
       image_path_,
       [&](const fs::path& file) -> const Source* {
         Scene& scene = scene_for(file);
-        const ReloadStatus status = scene.prepare();
+        const ReloadStatus status = scene.prepare(on_built);
         times_ += scene.times();
         if (status == ReloadStatus::Swapped) swapped.push_back(file);
         const Diagnostics& diags = scene.latest_diagnostics();
@@ -153,20 +160,27 @@ ReloadStatus Project::reload() {
       },
       &diagnostics_, channels_given);
   const std::vector<fs::path>& reached = walk.reached;
-  const std::map<fs::path, int>& cube_size = walk.cube_size;
-  const bool failed = !walk.ok;
   auto same_passes = [&] {
     if (reached.size() != passes_.size()) return false;
     for (const Pass& pass : passes_)
       if (std::find(reached.begin(), reached.end(), pass.file) == reached.end()) return false;
     return true;
   };
-  if (failed) {
+  if (!walk.ok) {
     for (const fs::path& file : reached) scene_for(file).discard();
     return ReloadStatus::Failed;
   }
   if (!changed && same_passes()) return ReloadStatus::Unchanged;
+  pending_ = PendingSwap{walk.reached, walk.cube_size, std::move(swapped)};
+  return ReloadStatus::Swapped;
+}
 
+void Project::commit() {
+  if (!pending_) return;
+  const PendingSwap swap = std::move(*pending_);
+  pending_.reset();
+  const std::vector<fs::path>& reached = swap.reached;
+  const std::map<fs::path, int>& cube_size = swap.cube_size;
   for (const fs::path& file : reached) scene_for(file).commit();
   for (auto it = scenes_.begin(); it != scenes_.end();)
     it = std::find(reached.begin(), reached.end(), it->first) == reached.end() ? scenes_.erase(it) : std::next(it);
@@ -204,9 +218,8 @@ ReloadStatus Project::reload() {
     }
     passes_.push_back(std::move(pass));
   }
-  rebuilt_ = std::move(swapped);
+  rebuilt_ = swap.rebuilt;
   ++generation_;
-  return ReloadStatus::Swapped;
 }
 
 std::vector<fs::path> Project::watch_list() const {

@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/host_inputs.h"
@@ -73,6 +74,15 @@ class Project {
   // a broken pass keeps the whole last good graph running. A pass whose text
   // did not change is not compiled again.
   ReloadStatus reload();
+  // reload() in two steps, for a window that builds on another thread:
+  // prepare() reads and builds every pass (Swapped: a new graph is ready to
+  // commit()) and changes nothing that drawing the running graph reads, so
+  // it may run on a thread whose GL context shares this one's objects, while
+  // this one draws. Nothing else may be called on the project meanwhile but
+  // the drawing's reads: passes(), image(), the programs and their sources.
+  // `on_built` sees each program compiled anew (Scene::prepare).
+  ReloadStatus prepare(const std::function<void(const Program&)>& on_built = {});
+  void commit();
   // -I/-D for every pass, and for the image pass alone (a debug view); they
   // apply at the next reload().
   void set_options(SourceOptions all, SourceOptions image_only);
@@ -118,6 +128,12 @@ class Project {
   std::map<fs::path, std::unique_ptr<Scene>> scenes_;
   std::vector<Pass> passes_;
   std::vector<fs::path> rebuilt_;
+  struct PendingSwap {  // what prepare() found, for commit()
+    std::vector<fs::path> reached;
+    std::map<fs::path, int> cube_size;
+    std::vector<fs::path> rebuilt;
+  };
+  std::optional<PendingSwap> pending_;
   ReloadTimes times_;
   Diagnostics diagnostics_;
   int generation_ = 0;

@@ -11,7 +11,7 @@ namespace rm {
 
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
   color_ = gl::make_texture(GL_TEXTURE_2D);
-  glTextureStorage2D(color_.get(), 1, GL_RGBA32F, width, height);
+  glTextureStorage2D(color_.get(), 1, kFormat, width, height);
   fbo_ = gl::make_framebuffer();
   glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, color_.get(), 0);
 }

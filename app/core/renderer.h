@@ -18,6 +18,7 @@ namespace rm {
 // An offscreen RGBA32F framebuffer, so EXR output keeps unclamped floats.
 class RenderTarget {
  public:
+  static constexpr GLenum kFormat = GL_RGBA32F;
   RenderTarget(int width, int height);
   void bind() const;
   GLuint framebuffer() const { return fbo_.get(); }

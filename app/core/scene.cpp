@@ -39,7 +39,7 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ReloadStatus Scene::prepare() {
+ReloadStatus Scene::prepare(const std::function<void(const Program&)>& on_built) {
   discard();
   times_ = {};
   auto start = std::chrono::steady_clock::now();
@@ -75,6 +75,11 @@ ReloadStatus Scene::prepare() {
   if (!built) {
     diagnostics_ = std::move(driver);
     return ReloadStatus::Failed;
+  }
+  if (on_built) {
+    start = std::chrono::steady_clock::now();
+    on_built(*built);
+    times_.warm = ms_since(start);
   }
   std::string text = source.text;
   pending_ = Built{std::move(text), std::move(*built), std::move(source), std::move(active)};

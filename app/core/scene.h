@@ -1,6 +1,7 @@
 // Scene: one shader file and what it includes, kept as the last program that
 // validated, compiled and linked. A failed reload never replaces it.
 #pragma once
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -15,8 +16,9 @@ struct ReloadTimes {
   double preprocess = 0;  // reading the files, #include, the wrapper
   double validate = 0;    // glslang, in its sandboxed child
   double driver = 0;      // the driver's compile and link
+  double warm = 0;        // the on_built hook: the window's warm-up draw
   ReloadTimes& operator+=(const ReloadTimes& o) {
-    preprocess += o.preprocess, validate += o.validate, driver += o.driver;
+    preprocess += o.preprocess, validate += o.validate, driver += o.driver, warm += o.warm;
     return *this;
   }
 };
@@ -43,7 +45,10 @@ class Scene {
   // reload() in two steps, so that a project swaps all its passes or none:
   // prepare() builds the new program and returns Swapped when one is ready
   // to commit(); discard() keeps it cached and the running one running.
-  ReloadStatus prepare();
+  // prepare() touches nothing that drawing the running program reads, so it
+  // may run on another thread whose GL context shares this one's objects;
+  // `on_built` sees each program compiled anew (not one from the cache).
+  ReloadStatus prepare(const std::function<void(const Program&)>& on_built = {});
   void commit();
   void discard();
   // The source of the prepared program if there is one, else the running one's.

@@ -170,6 +170,36 @@ TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
   EXPECT_EQ(at(frame(4), 0, 0), glm::vec4(6, 10, 0, 1)) << "both new: A adds 2, B is 10";
 }
 
+// The window builds a reload on another thread: prepare() must leave the
+// running graph drawing as it was until commit() swaps it.
+TEST_F(Passes, APreparedReloadLeavesTheRunningGraphDrawingUntilItIsCommitted) {
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  write_file(dir_ / "image.frag", std::string(kShowChannel0));
+  Project& project = load("image.frag");
+  EXPECT_EQ(at(frame(0), 1, 1)[0], 1.0f);
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0); }\n");
+  std::vector<GLuint> built;
+  auto count_built = [&](const Program& program) { built.push_back(program.id()); };
+  ASSERT_EQ(project.prepare(count_built), ReloadStatus::Swapped) << join(project.diagnostics());
+  EXPECT_EQ(built.size(), 1u) << "on_built sees the one pass compiled anew";
+  EXPECT_EQ(project.generation(), 1);
+  EXPECT_EQ(at(frame(1), 1, 1)[0], 1.0f) << "prepared, not committed: the running buffer draws";
+  project.commit();
+  std::string error;
+  ASSERT_TRUE(graph_.update(project, &error)) << error;
+  EXPECT_EQ(project.generation(), 2);
+  EXPECT_EQ(project.passes().front().scene->program()->id(), built[0]);
+  EXPECT_EQ(at(frame(2), 1, 1)[0], 2.0f);
+
+  // Back to a text built before: from the cache, so nothing is built anew.
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  ASSERT_EQ(project.prepare(count_built), ReloadStatus::Swapped);
+  EXPECT_EQ(built.size(), 1u);
+  project.commit();
+  ASSERT_TRUE(graph_.update(project, &error)) << error;
+  EXPECT_EQ(at(frame(3), 1, 1)[0], 1.0f);
+}
+
 TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTime); }\n");
   write_file(dir_ / "image.frag", kShowChannel0);
