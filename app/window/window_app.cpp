@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <iostream>
 #include <optional>
@@ -25,6 +26,7 @@
 #include "core/renderer.h"
 #include "core/knobs.h"
 #include "core/scene.h"
+#include "window/builder.h"
 #include "window/kept_picture.h"
 #include "window/key_codes.h"
 #include "window/panels.h"
@@ -57,6 +59,14 @@ long long steady_ns() {
       .count();
 }
 
+bool mesa_cache_disabled() {
+  for (const char* name : {"MESA_SHADER_CACHE_DISABLE", "MESA_GLSL_CACHE_DISABLE"}) {
+    const char* value = std::getenv(name);
+    if (value && (std::string(value) == "true" || std::string(value) == "1")) return true;
+  }
+  return false;
+}
+
 std::string timestamp_now() {
   const auto now = std::chrono::system_clock::now();
   const std::time_t t = std::chrono::system_clock::to_time_t(now);
@@ -75,7 +85,7 @@ class WindowApp {
   WindowApp(const WindowOptions& options, GLFWwindow* window)
       : options_(options), window_(window), source_(options.source),
         project_(project_files(options.scene, options.media), options.source, options.channels),
-        watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window),
+        builder_(window), watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window),
         budget_(options.target_fps > 0 ? 1000.0 / options.target_fps : 0.0) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
     model_.values = &inputs_.uniforms;
@@ -93,7 +103,7 @@ class WindowApp {
         return kExitUsage;
       }
     }
-    load();
+    loaded(project_.reload());
     while (!glfwWindowShouldClose(window_) && !quit_) {
       // A picture that cannot change is drawn once: then sleep until an event,
       // waking every 20 ms to look at the watcher (a save shows up that fast).
@@ -102,8 +112,15 @@ class WindowApp {
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
+      if (const std::optional<ReloadStatus> built = builder_.finished()) {
+        if (*built == ReloadStatus::Swapped) project_.commit();
+        loaded(*built);
+        if (std::exchange(load_again_, false)) load();
+      }
       if (busy() && !quit_) frame(redraw_needed());
     }
+    // Gone from the screen at once; a build under way may hold the exit up.
+    glfwHideWindow(window_);
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
   }
@@ -171,8 +188,28 @@ class WindowApp {
     if (ui_.visible()) ui_frames_ = 3;
   }
 
+  // A reload with the options as they are now (-D, the view). It is built on
+  // the builder's thread while the running program keeps drawing; one asked
+  // for during a build starts when that one is done.
   void load() {
-    const ReloadStatus status = project_.reload();
+    if (builder_.busy()) {
+      load_again_ = true;
+      return;
+    }
+    project_.set_options(source_, with_view(source_, view_));
+    if (!builder_.available()) {
+      loaded(project_.reload());
+      return;
+    }
+    if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << '\n';
+    builder_.start([this] {
+      return project_.prepare([this](const Program& program) {
+        if (warm_up_) warm_up(program, RenderTarget::kFormat);
+      });
+    });
+  }
+
+  void loaded(ReloadStatus status) {
     watcher_->watch(project_.watch_list());
     std::string channel_error;
     if (status == ReloadStatus::Unchanged) {  // a channel image may have changed
@@ -210,7 +247,7 @@ class WindowApp {
         for (const fs::path& pass : project_.rebuilt()) std::cerr << ' ' << pass.filename().string();
         const ReloadTimes& t = project_.times();
         std::cerr << "; preprocess " << t.preprocess << " ms, glslang " << t.validate << " ms, driver compile+link "
-                  << t.driver << " ms)";
+                  << t.driver << " ms, warm-up " << t.warm << " ms)";
       }
       std::cerr << '\n';
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
@@ -264,7 +301,6 @@ class WindowApp {
   // -D NAME=VALUE for every pass from now on (VALUE "": the scene's own), and a rebuild.
   void set_define(const std::string& name, const std::string& value) {
     source_.defines = with_define(source_.defines, name, value);
-    project_.set_options(source_, with_view(source_, view_));
     load();
     if (options_.verbose) std::cerr << "raymarching: -D " << name << "=" << (value.empty() ? "(the scene's)" : value) << '\n';
   }
@@ -619,7 +655,6 @@ class WindowApp {
     View next = next_view(view_);
     while (next != View::Picture && view_problem(project_.image_source(), next)) next = next_view(next);
     view_ = next;
-    project_.set_options(source_, with_view(source_, view_));
     load();
     if (options_.verbose) std::cerr << "raymarching: view " << to_string(view_) << '\n';
   }
@@ -652,6 +687,12 @@ class WindowApp {
   GLFWwindow* window_;
   SourceOptions source_;  // the command line's, with the knobs and preset set in the panel
   Project project_;
+  Builder builder_;
+  bool load_again_ = false;  // a reload asked for while the builder was busy
+  // The builder draws each new program once, so that llvmpipe generates its
+  // code there and the window's first draw finds it in Mesa's shader cache.
+  // With the cache off it would be generated twice.
+  const bool warm_up_ = !mesa_cache_disabled();
   std::unique_ptr<Watcher> watcher_;
   Renderer renderer_;
   FrameGraph graph_;

@@ -6,7 +6,8 @@ Checks: a shader of half a million loop steps per pixel (about half a
 minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
-going; an animated scene over budget is drawn at a lower scale, shown in the
+going; a save of a shader slow to compile is built while the running one
+keeps drawing; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
 --refine supersamples, which the screen, F12 and `render --samples` agree
@@ -52,6 +53,21 @@ void mainImage(out vec4 c, in vec2 f) {
   float disc = length(f - vec2(160.3, 90.7)) < 61.4 ? 1.0 : 0.0;
   float stripes = step(0.5, fract(f.x * 0.137 + f.y * 0.071));
   c = vec4(disc, stripes, COLOUR, 1.0);
+}
+"""
+
+# Animated and light to draw, slow to compile: a long run of straight-line
+# code that no picture reaches, but which the driver must compile (llvmpipe
+# generates its machine code too). SEED makes each text new to Mesa's cache.
+SLOW_TO_BUILD = """// animated, slow to compile
+#define S a = fract(a * 1.37 + sin(a + SEED));
+#define S8 S S S S S S S S
+#define S64 S8 S8 S8 S8 S8 S8 S8 S8
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  float a = uv.x;
+  if (iTime < -1.0) { S64 S64 S64 S64 S64 S64 S64 S64 }
+  c = vec4(uv, 0.5 + 0.5 * sin(iTime + a), 1.0);
 }
 """
 
@@ -126,6 +142,28 @@ def too_slow_session(work):
           wait_for(lambda: "presented generation 2" in open(err).read()), open(err).read()[-500:])
     check("... and clears the error", wait_for(lambda: "error" not in xdotool("getwindowname", window)),
           xdotool("getwindowname", window))
+    xdotool("key", "--window", window, "q")
+    check("and Q quits", proc.wait(timeout=10) == 0)
+
+
+def keeps_drawing_while_building(work):
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"
+    scene, proc, err, _ = start(work, "building.frag", SLOW_TO_BUILD.replace("SEED", seed), "--no-ui")
+    window = first_frame_window(proc, "building.frag", err, timeout=60)
+    check("a window that is slow to compile opens", bool(window))
+    if not window:
+        return
+    time.sleep(0.5)
+    save_by_rename(scene, SLOW_TO_BUILD.replace("SEED", seed + "1"))
+    built = wait_for(lambda: re.search(r"building generation 2\n(.*?)reload ok generation 2 .*warm-up ([0-9.]+) ms",
+                                       open(err).read(), re.S), timeout=60)
+    check("a save is built while the window runs", bool(built), open(err).read()[-500:])
+    if built:
+        pictures = len(re.findall(r"^raymarching: picture ", built.group(1), re.M))
+        print(f"     pictures of the running program during the build: {pictures}; warm-up {built.group(2)} ms")
+        check("the running program keeps drawing while the new one compiles", pictures >= 3, pictures)
+    check("then the new program is shown", wait_for(lambda: "presented generation 2" in open(err).read()),
+          open(err).read()[-500:])
     xdotool("key", "--window", window, "q")
     check("and Q quits", proc.wait(timeout=10) == 0)
 
@@ -209,6 +247,7 @@ if __name__ == "__main__":
         heavy_session(work)
         heavy_fixed_by_a_save(work)
         too_slow_session(work)
+        keeps_drawing_while_building(work)
         scaled_then_refined(work)
         refined_still(work)
     finally:

@@ -1,0 +1,41 @@
+#include "window/builder.h"
+
+#include "core/gl.h"
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace rm {
+
+Builder::Builder(GLFWwindow* window) {
+  // The window's context hints (version, profile) still hold.
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  context_ = glfwCreateWindow(1, 1, "raymarching builder", nullptr, window);
+  glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+}
+
+Builder::~Builder() {
+  if (thread_.joinable()) thread_.join();
+  if (context_) glfwDestroyWindow(context_);
+}
+
+void Builder::start(std::function<ReloadStatus()> build) {
+  done_ = false;
+  thread_ = std::thread([this, build = std::move(build)] {
+    glfwMakeContextCurrent(context_);
+    status_ = build();
+    // Shared objects are complete for another context once this one has
+    // finished with them.
+    glFinish();
+    glfwMakeContextCurrent(nullptr);
+    done_ = true;
+    glfwPostEmptyEvent();
+  });
+}
+
+std::optional<ReloadStatus> Builder::finished() {
+  if (!thread_.joinable() || !done_) return std::nullopt;
+  thread_.join();
+  return status_;
+}
+
+}  // namespace rm

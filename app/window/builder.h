@@ -1,0 +1,41 @@
+// Builder: runs a reload's build (Project::prepare: the preprocessor,
+// glslang, the driver's compile and link, a warm-up draw) on a thread of its
+// own, in the GL context of a hidden window that shares the window's
+// objects. The window keeps drawing the running program meanwhile, and
+// commits the new one when the build has finished.
+#pragma once
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <thread>
+
+#include "core/scene.h"
+
+struct GLFWwindow;
+
+namespace rm {
+
+class Builder {
+ public:
+  // On the main thread, with `window`'s context current.
+  explicit Builder(GLFWwindow* window);
+  ~Builder();  // waits for a build under way
+  Builder(const Builder&) = delete;
+  Builder& operator=(const Builder&) = delete;
+
+  // False when no shared context could be made: the caller builds in place.
+  bool available() const { return context_ != nullptr; }
+  bool busy() const { return thread_.joinable(); }
+  // Runs `build` on the builder's thread; wakes the event loop when done.
+  void start(std::function<ReloadStatus()> build);
+  // The finished build's status, once; nullopt while one runs or none did.
+  std::optional<ReloadStatus> finished();
+
+ private:
+  GLFWwindow* context_ = nullptr;
+  std::thread thread_;
+  std::atomic<bool> done_{false};
+  ReloadStatus status_ = ReloadStatus::Unchanged;
+};
+
+}  // namespace rm
