@@ -29,8 +29,7 @@ FrameGraph::FrameGraph(const Renderer& renderer) : renderer_(renderer) {
   black_[2] = gl::make_texture(GL_TEXTURE_3D);
   glTextureStorage3D(black_[2].get(), 1, GL_RGBA8, 1, 1, 1);
   glTextureSubImage3D(black_[2].get(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, black);
-  // Shadertoy filters across cube faces (WebGL 2 always does).
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  set_sampling_state();
   keyboard_texture_ = gl::make_texture(GL_TEXTURE_2D);
   glTextureStorage2D(keyboard_texture_.get(), 1, GL_R8, KeyboardState::kKeys, 3);
   const GLenum min_filters[3] = {GL_NEAREST, GL_LINEAR, GL_LINEAR_MIPMAP_LINEAR};
@@ -129,6 +128,12 @@ void FrameGraph::resize(Buffer& buffer, glm::ivec2 size, bool cube) const {
   buffer.front_fbo = std::move(front_fbo);
   buffer.back_fbo = std::move(back_fbo);
   buffer.size = size;
+}
+
+std::map<fs::path, ChannelInputs> FrameGraph::channel_inputs(const Project& project) const {
+  std::map<fs::path, ChannelInputs> out;
+  for (size_t i = 0; i < project.passes().size(); ++i) out[project.passes()[i].file] = inputs_of(project, i);
+  return out;
 }
 
 ChannelInputs FrameGraph::inputs_of(const Project& project, size_t pass) const {

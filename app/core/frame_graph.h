@@ -71,6 +71,9 @@ class FrameGraph {
 
   void restart();  // every buffer back to zero
   KeyboardState& keyboard() { return keyboard_; }
+  // What each pass reads now, by file: the textures and samplers bound to
+  // its channels (a builder warms a new program up with the same ones).
+  std::map<fs::path, ChannelInputs> channel_inputs(const Project& project) const;
   // The latest output of a buffer pass (tests read it); 0 if none.
   GLuint buffer_texture(const fs::path& pass) const;
 

@@ -147,19 +147,4 @@ void Program::set_sampler(const std::string& name, int unit) const {
   if (it != uniforms_.end()) glProgramUniform1i(id(), it->second.location, unit);
 }
 
-void warm_up(const Program& program, GLenum format) {
-  const gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
-  glTextureStorage2D(texture.get(), 1, format, 1, 1);
-  const gl::Framebuffer target = gl::make_framebuffer();
-  glNamedFramebufferTexture(target.get(), GL_COLOR_ATTACHMENT0, texture.get(), 0);
-  const gl::VertexArray vertices = gl::make_vertex_array();
-  glBindFramebuffer(GL_FRAMEBUFFER, target.get());
-  glViewport(0, 0, 1, 1);
-  glUseProgram(program.id());
-  glBindVertexArray(vertices.get());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glFinish();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-}
-
 }  // namespace rm

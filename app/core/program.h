@@ -43,11 +43,4 @@ class Program {
   std::unordered_map<std::string, UniformInfo> uniforms_;
 };
 
-// Draws one pixel of `program` into a throwaway target of `format`, in the
-// current context. A driver that generates a program's machine code at its
-// first draw (llvmpipe, per target format) does that work here, on a builder
-// thread's shared context, and keeps it in its shader cache, from which the
-// window's own first draw then loads it.
-void warm_up(const Program& program, GLenum format);
-
 }  // namespace rm

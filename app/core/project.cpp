@@ -133,7 +133,7 @@ ReloadStatus Project::reload() {
   return status;
 }
 
-ReloadStatus Project::prepare(const std::function<void(const Program&)>& on_built) {
+ReloadStatus Project::prepare(const OnBuilt& on_built) {
   pending_.reset();
   diagnostics_.clear();
   times_ = {};

@@ -80,8 +80,7 @@ class Project {
   // it may run on a thread whose GL context shares this one's objects, while
   // this one draws. Nothing else may be called on the project meanwhile but
   // the drawing's reads: passes(), image(), the programs and their sources.
-  // `on_built` sees each program compiled anew (Scene::prepare).
-  ReloadStatus prepare(const std::function<void(const Program&)>& on_built = {});
+  ReloadStatus prepare(const OnBuilt& on_built = {});
   void commit();
   // -I/-D for every pass, and for the image pass alone (a debug view); they
   // apply at the next reload().

@@ -27,6 +27,35 @@ Image RenderTarget::read() const {
   return gl_rows.flipped();
 }
 
+void set_sampling_state() { glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); }
+
+void bind_channels(const Program& program, const ChannelInputs& channels) {
+  for (int i = 0; i < 4; ++i) {
+    const ChannelInput& c = channels[static_cast<size_t>(i)];
+    glBindTextureUnit(static_cast<GLuint>(i), c.texture);
+    glBindSampler(static_cast<GLuint>(i), c.sampler);
+    program.set_sampler("iChannel" + std::to_string(i), i);
+    program.set_sampler("u_tex" + std::to_string(i), i);
+  }
+}
+
+void warm_up(const Program& program, GLenum format, const ChannelInputs& channels) {
+  const gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(texture.get(), 1, format, 1, 1);
+  const gl::Framebuffer target = gl::make_framebuffer();
+  glNamedFramebufferTexture(target.get(), GL_COLOR_ATTACHMENT0, texture.get(), 0);
+  const gl::VertexArray vertices = gl::make_vertex_array();
+  set_sampling_state();  // llvmpipe's code depends on it too
+  bind_channels(program, channels);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.get());
+  glViewport(0, 0, 1, 1);
+  glUseProgram(program.id());
+  glBindVertexArray(vertices.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glFinish();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 Renderer::Renderer() : vao_(gl::make_vertex_array()) {
   GLint max_size = 0, viewport[2] = {0, 0};
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
@@ -65,14 +94,9 @@ void Renderer::draw_pass(const Program& program, const FrameInputs& in, const Ch
                          glm::ivec2 size) const {
   set_host_inputs(program, in);
   for (const UniformValue& u : in.uniforms) program.set(u.name, u.value.data(), static_cast<int>(u.value.size()));
-  for (int i = 0; i < 4; ++i) {
-    const ChannelInput& c = channels[static_cast<size_t>(i)];
-    glBindTextureUnit(static_cast<GLuint>(i), c.texture);
-    glBindSampler(static_cast<GLuint>(i), c.sampler);
-    program.set_sampler("iChannel" + std::to_string(i), i);
-    program.set_sampler("u_tex" + std::to_string(i), i);
-    program.set_element("iChannelResolution", i, &c.resolution.x, 3);
-  }
+  bind_channels(program, channels);
+  for (int i = 0; i < 4; ++i)
+    program.set_element("iChannelResolution", i, &channels[static_cast<size_t>(i)].resolution.x, 3);
   glViewport(0, 0, size.x, size.y);
   glUseProgram(program.id());
   glBindVertexArray(vao_.get());

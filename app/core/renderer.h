@@ -42,6 +42,22 @@ struct ChannelInput {
 };
 using ChannelInputs = std::array<ChannelInput, 4>;
 
+// The context state every pass is drawn with: Shadertoy filters across cube
+// faces (WebGL 2 always does). Set once per context.
+void set_sampling_state();
+
+// Binds each channel's texture and sampler to its unit and points the
+// program's iChannelN (and u_texN) at it.
+void bind_channels(const Program& program, const ChannelInputs& channels);
+
+// Draws one pixel of `program` into a throwaway target of `format`, reading
+// `channels`, in the current context. A driver that generates a program's
+// machine code at its first draw, for the target's format and the textures'
+// formats and samplers (llvmpipe), does that work here, on a builder
+// thread's shared context, and keeps it in its shader cache, from which the
+// window's own first draw with the same state then loads it.
+void warm_up(const Program& program, GLenum format, const ChannelInputs& channels = {});
+
 class Renderer {
  public:
   Renderer();  // needs a current GL context

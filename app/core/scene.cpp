@@ -39,7 +39,7 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ReloadStatus Scene::prepare(const std::function<void(const Program&)>& on_built) {
+ReloadStatus Scene::prepare(const OnBuilt& on_built) {
   discard();
   times_ = {};
   auto start = std::chrono::steady_clock::now();
@@ -78,7 +78,7 @@ ReloadStatus Scene::prepare(const std::function<void(const Program&)>& on_built)
   }
   if (on_built) {
     start = std::chrono::steady_clock::now();
-    on_built(*built);
+    on_built(path_, *built);
     times_.warm = ms_since(start);
   }
   std::string text = source.text;

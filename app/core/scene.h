@@ -23,6 +23,10 @@ struct ReloadTimes {
   }
 };
 
+// Called with each program a reload compiled anew (not one from the cache),
+// and the pass file it belongs to.
+using OnBuilt = std::function<void(const fs::path& pass, const Program&)>;
+
 enum class ReloadStatus {
   Swapped,    // a new program is running
   Unchanged,  // the combined source is the same as last attempt: nothing done
@@ -47,8 +51,7 @@ class Scene {
   // to commit(); discard() keeps it cached and the running one running.
   // prepare() touches nothing that drawing the running program reads, so it
   // may run on another thread whose GL context shares this one's objects;
-  // `on_built` sees each program compiled anew (not one from the cache).
-  ReloadStatus prepare(const std::function<void(const Program&)>& on_built = {});
+  ReloadStatus prepare(const OnBuilt& on_built = {});
   void commit();
   void discard();
   // The source of the prepared program if there is one, else the running one's.

@@ -202,9 +202,13 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << '\n';
-    builder_.start([this] {
-      return project_.prepare([this](const Program& program) {
-        if (warm_up_) warm_up(program, RenderTarget::kFormat);
+    // Each new program is drawn once with what its pass reads now (a new
+    // pass, or a new image, reads nothing yet).
+    builder_.start([this, channels = graph_.channel_inputs(project_)] {
+      return project_.prepare([&](const fs::path& pass, const Program& program) {
+        if (!warm_up_) return;
+        const auto read = channels.find(pass);
+        warm_up(program, RenderTarget::kFormat, read == channels.end() ? ChannelInputs{} : read->second);
       });
     });
   }

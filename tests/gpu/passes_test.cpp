@@ -179,7 +179,10 @@ TEST_F(Passes, APreparedReloadLeavesTheRunningGraphDrawingUntilItIsCommitted) {
   EXPECT_EQ(at(frame(0), 1, 1)[0], 1.0f);
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0); }\n");
   std::vector<GLuint> built;
-  auto count_built = [&](const Program& program) { built.push_back(program.id()); };
+  auto count_built = [&](const fs::path& pass, const Program& program) {
+    EXPECT_EQ(pass, dir_ / "buffer_a.frag");
+    built.push_back(program.id());
+  };
   ASSERT_EQ(project.prepare(count_built), ReloadStatus::Swapped) << join(project.diagnostics());
   EXPECT_EQ(built.size(), 1u) << "on_built sees the one pass compiled anew";
   EXPECT_EQ(project.generation(), 1);
