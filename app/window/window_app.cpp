@@ -119,8 +119,10 @@ class WindowApp {
       }
       if (busy() && !quit_) frame(redraw_needed());
     }
-    // Gone from the screen at once; a build under way may hold the exit up.
+    // Gone from the screen at once: a build under way, the teardown and the
+    // process's exit (llvmpipe's threads, LLVM) come after it.
     glfwHideWindow(window_);
+    if (options_.verbose) std::cerr << "raymarching: window hidden at " << steady_ns() << '\n';
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
   }

@@ -4,14 +4,17 @@ Run as: xvfb-run -a python3 reload_examples.py RAYMARCHING CSV_PATH SCENE...
 
 Each scene's folder is copied to a temporary one, and the copy opens in an
 800x450 window (the default size; interface hidden, -v). Then five fresh
-edits are saved by rename, as editors save, each a new line at the end of
-the scene, and three saves go back to a text saved before. A fresh edit is
-compiled from scratch: Mesa's shader cache is turned off
-(MESA_SHADER_CACHE_DISABLE), since a real edit never finds its program
-there. Per save, from the -v log (CLOCK_MONOTONIC times): the first
-present of the new program (its first tiles) and its first whole picture;
-where the time went: preprocess, glslang, the driver's compile and link,
-the first draw (llvmpipe compiles the shader's machine code during it).
+edits are saved by rename, as editors save, each appending a digit to the
+scene's last decimal number (1.0 becomes 1.0001, then 1.0002: new code, the
+same picture), and three saves go back to a text saved before. Mesa's
+shader cache starts empty for each scene (MESA_SHADER_CACHE_DIR), so a
+fresh edit is compiled from scratch, as a real one is. Per save, from the -v log (CLOCK_MONOTONIC
+times): the first present of the new program (its first tiles) and its
+first whole picture; where the time went: preprocess, glslang, the driver's
+compile and link, the warm-up draw (on the builder's thread, with those
+three: llvmpipe generates the machine code in it), the window's own first
+draw (which loads that code from the cache: the only stage the window
+waits for).
 Prints a Markdown table of medians; writes the stages as CSV_PATH.
 """
 import os
@@ -28,7 +31,8 @@ from harness import save_by_rename, wait_for  # noqa: E402
 
 FRESH, BACK = 5, 3
 RELOAD = re.compile(r"reload ok generation (\d+) \(rebuilt:[^;]*; preprocess ([0-9.e-]+) ms, glslang ([0-9.e-]+) ms, "
-                    r"driver compile\+link ([0-9.e-]+) ms\)")
+                    r"driver compile\+link ([0-9.e-]+) ms, warm-up ([0-9.e-]+) ms\)")
+LAST_NUMBER = re.compile(r"\b(\d+\.\d+)(?!.*\b\d+\.\d+)", re.S)
 FIRST_DRAW = re.compile(r"first draw of generation (\d+): a \d+x\d+ tile, ([0-9.e-]+) ms")
 PRESENTED = re.compile(r"presented generation (\d+) at (\d+)")
 PICTURE = re.compile(r"picture \d+x\d+ scale [0-9.e-]+ in \d+ tiles?, [0-9.e-]+ ms, done at (\d+)")
@@ -51,7 +55,7 @@ def reload_of(err, generation, saved):
     draw = next((float(m.group(2)) for m in FIRST_DRAW.finditer(text) if int(m.group(1)) == generation), 0.0)
     return {"present": int(present.group(2)) / 1e9 - saved, "whole": whole - saved,
             "preprocess": float(reload.group(2)), "glslang": float(reload.group(3)),
-            "driver": float(reload.group(4)), "draw": draw}
+            "driver": float(reload.group(4)), "warm": float(reload.group(5)), "draw": draw}
 
 
 def session(binary, scene, work):
@@ -62,7 +66,7 @@ def session(binary, scene, work):
     copy = os.path.join(folder, os.path.basename(scene))
     original = log(copy)
     err = os.path.join(work, "stderr.txt")
-    env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
+    env = dict(os.environ, MESA_SHADER_CACHE_DIR=os.path.join(folder, ".mesa-cache"))
     with open(err, "w") as e, open(os.devnull, "w") as out:
         proc = subprocess.Popen([binary, copy, "--no-ui", "-v"], stdout=out, stderr=e, cwd=folder, env=env)
     try:
@@ -72,7 +76,8 @@ def session(binary, scene, work):
         texts, fresh, back = [original], [], []
         for i in range(FRESH + BACK):
             if i < FRESH:
-                text = original + f"\n// edit {i + 1}\n"
+                text = LAST_NUMBER.sub(lambda m: f"{m.group(1)}{i + 1:03d}", original)
+                assert text != original, scene
                 texts.append(text)
             else:  # back to a text the window has built before (its cache)
                 text = texts[-2] if (i - FRESH) % 2 == 0 else texts[-1]
@@ -95,10 +100,12 @@ def main():
     binary, csv_path, scenes = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3:]
     work = tempfile.mkdtemp(prefix="rm-reload-")
     print("| scene | save to first present, ms | save to whole picture, ms | preprocess | glslang | "
-          "driver compile+link | first draw (16x16) | a text built before: save to whole picture, ms |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+          "driver compile+link | warm-up draw | the window's first draw (16x16) | "
+          "a text built before: save to whole picture, ms |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     with open(csv_path, "w") as csv:
-        csv.write("scene,preprocess,glslang,driver compile+link,first draw,the rest: watcher + tiles + present\n")
+        csv.write("scene,preprocess,glslang,driver compile+link,warm-up draw,the window's first draw,"
+                  "the rest: watcher + tiles + present\n")
         for scene in scenes:
             name = os.path.basename(os.path.dirname(scene)) + "/" + os.path.basename(scene) \
                 if os.path.basename(scene) == "image.frag" else os.path.basename(scene)
@@ -109,9 +116,11 @@ def main():
             med = {k: statistics.median(t[k] for t in fresh) for k in fresh[0]}
             back_whole = statistics.median(t["whole"] for t in back)
             print(f"| {name} | {med['present'] * 1000:.0f} | {med['whole'] * 1000:.0f} | {med['preprocess']:.1f} | "
-                  f"{med['glslang']:.1f} | {med['driver']:.1f} | {med['draw']:.1f} | {back_whole * 1000:.0f} |")
-            stages = med["preprocess"] + med["glslang"] + med["driver"] + med["draw"]
-            csv.write(f"{name},{med['preprocess']:.1f},{med['glslang']:.1f},{med['driver']:.1f},{med['draw']:.1f},"
+                  f"{med['glslang']:.1f} | {med['driver']:.1f} | {med['warm']:.1f} | {med['draw']:.1f} | "
+                  f"{back_whole * 1000:.0f} |")
+            stages = med["preprocess"] + med["glslang"] + med["driver"] + med["warm"] + med["draw"]
+            csv.write(f"{name},{med['preprocess']:.1f},{med['glslang']:.1f},{med['driver']:.1f},{med['warm']:.1f},"
+                      f"{med['draw']:.1f},"
                       f"{max(0.0, med['whole'] * 1000 - stages):.1f}\n")
             print(f"{name}: done", file=sys.stderr)
     shutil.rmtree(work, ignore_errors=True)
