@@ -14,7 +14,10 @@ input latency while the picture moves, and the time to the process's exit
 follows (the window reads keys between pictures, or between
 slices of tiles). Prints a Markdown table; writes
 CSV_DIR/budget_trace.csv, the first pictures of the heaviest scene, both ways.
+A SCENE may be a Shadertoy JSON export: a list of where each came from
+follows the table.
 """
+import json
 import os
 import re
 import statistics
@@ -106,6 +109,13 @@ def main():
         print(f"| {r['name']} | {'30 fps' if r['budget_on'] else 'off'} | {n + 1 if n else len(r['pictures'])} | "
               f"{within * 100:.0f}% | {median:.1f} | {scale:.2f} | {ms(r['still_s'])} | {ms(r['refined_s'])} | "
               f"{ms(r['hidden_s'])} / {ms(r['quit_s'])} |")
+
+    # Shadertoy exports: where each comes from (the site's id, name and author).
+    for scene in scenes:
+        if scene.endswith(".json"):
+            info = json.load(open(scene)).get("Shader", {}).get("info", {})
+            print(f"- {os.path.basename(scene)}: \"{info.get('name', '?')}\" by {info.get('username', '?')}, "
+                  f"https://www.shadertoy.com/view/{info.get('id', '?')}")
 
     # The heaviest scene's first pictures, both ways: the scale finding its step.
     heaviest = max((r for r in rows if not r["budget_on"]), key=lambda r: statistics.median(r["intervals"] or [0]))
