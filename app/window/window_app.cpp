@@ -85,7 +85,7 @@ class WindowApp {
   WindowApp(const WindowOptions& options, GLFWwindow* window)
       : options_(options), window_(window), source_(options.source),
         project_(project_files(options.scene, options.media), options.source, options.channels),
-        builder_(window), watcher_(make_watcher(options.watch)), graph_(renderer_), ui_(window),
+        watcher_(make_watcher(options.watch)), graph_(renderer_), builder_(window), ui_(window),
         budget_(options.target_fps > 0 ? 1000.0 / options.target_fps : 0.0) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
     model_.values = &inputs_.uniforms;
@@ -108,7 +108,10 @@ class WindowApp {
       // A picture that cannot change is drawn once: then sleep until an event,
       // waking every 20 ms to look at the watcher (a save shows up that fast).
       // A picture drawn in tiles comes back here between slices of tiles.
-      auto busy = [&] { return redraw_needed() || ui_frames_ > 0 || drawing_ || refining() || shot_requested_; };
+      auto busy = [&] {
+        return redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
+               (refining() && !builder_.busy()) || shot_requested_;
+      };
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
@@ -359,8 +362,8 @@ class WindowApp {
     // The interface shown again (F2) over a picture that went straight to
     // the window: the same picture again, without advancing anything.
     if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height, redraw);
-    else if (!drawing_ && refining()) start_picture(width, height, false, samples_);
-    const bool straight = drawing_ && continue_picture();
+    else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
+    const bool straight = drawing_ && !holds_for_build() && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, width, height);
@@ -684,6 +687,10 @@ class WindowApp {
   bool redraw_needed() const {
     return !iconified_ && !too_slow_ && (dirty_ || rest_due_ || (use_.time && !clock_.paused()));
   }
+  // A picture at rest waits, in tiles or samples, while a reload is built:
+  // the build gets the cores, and the new program may replace it anyway. A
+  // moving picture keeps moving.
+  bool holds_for_build() const { return builder_.busy() && drawing_ && drawing_->resting; }
   // A picture at rest still gathering supersamples (--refine).
   bool refining() const {
     return samples_ > 0 && samples_ < options_.refine && !iconified_ && !too_slow_ && project_.ready();
@@ -693,15 +700,17 @@ class WindowApp {
   GLFWwindow* window_;
   SourceOptions source_;  // the command line's, with the knobs and preset set in the panel
   Project project_;
+  std::unique_ptr<Watcher> watcher_;
+  Renderer renderer_;
+  FrameGraph graph_;
+  // After the project and the graph, whose textures its warm-up reads: it
+  // is destroyed, and its thread joined, before them.
   Builder builder_;
   bool load_again_ = false;  // a reload asked for while the builder was busy
   // The builder draws each new program once, so that llvmpipe generates its
   // code there and the window's first draw finds it in Mesa's shader cache.
   // With the cache off it would be generated twice.
   const bool warm_up_ = !mesa_cache_disabled();
-  std::unique_ptr<Watcher> watcher_;
-  Renderer renderer_;
-  FrameGraph graph_;
   KeptPicture picture_;
   Ui ui_;
   UiModel model_;
