@@ -6,8 +6,8 @@ Checks: a shader of half a million loop steps per pixel (about half a
 minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
-going; a save of a shader slow to compile is built while the running one
-keeps drawing; an animated scene over budget is drawn at a lower scale, shown in the
+going; a save of a shader slow to compile, and then a macro bomb, are
+built while the running one keeps drawing; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
 --refine supersamples, which the screen, F12 and `render --samples` agree
@@ -164,6 +164,17 @@ def keeps_drawing_while_building(work):
         check("the running program keeps drawing while the new one compiles", pictures >= 3, pictures)
     check("then the new program is shown", wait_for(lambda: "presented generation 2" in open(err).read()),
           open(err).read()[-500:])
+    # A macro bomb holds glslang until its sandbox gives up (its memory here,
+    # in about 2 s): the window keeps drawing the last good program meanwhile.
+    bomb = "float x = 1.0;\n#define A0 x+x\n" + "".join(f"#define A{i} A{i - 1}+A{i - 1}\n" for i in range(1, 26))
+    save_by_rename(scene, bomb + "void mainImage(out vec4 c, in vec2 f) { c = vec4(A25); }\n")
+    failed = wait_for(lambda: re.search(r"building generation 3\n(.*?)(building\.frag(?::\d+:\d+)?: error: [^\n]*)",
+                                        open(err).read(), re.S), timeout=30)
+    check("a macro bomb is reported as an error in its file", bool(failed), open(err).read()[-500:])
+    if failed:
+        pictures = len(re.findall(r"^raymarching: picture ", failed.group(1), re.M))
+        print(f"     {failed.group(2)}; pictures during its validation: {pictures}")
+        check("the window keeps drawing while glslang works on it", pictures >= 5, pictures)
     xdotool("key", "--window", window, "q")
     check("and Q quits", proc.wait(timeout=10) == 0)
 
