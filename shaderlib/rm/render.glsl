@@ -29,6 +29,9 @@
 //   RM_BOUNDING_SPHERE vec4(centre, radius): all of map()'s surface lies
 //                  inside; rays skip straight to it, miss it for free, and
 //                  shadow rays stop where they leave it
+//   RM_BOUNDING_BOX_MIN / RM_BOUNDING_BOX_MAX vec3 corners: the same with a
+//                  box, which fits a flat layout (objects on a floor) tighter;
+//                  both may be given, and a ray then keeps to where they overlap
 // Secondary rays are spent only where the material asks for them: shadow rays
 // for lit sides, reflection rays for reflectivity > 0, refraction for
 // transparency > 0. Without RM_REFRACTION a transparent material is opaque.
@@ -108,10 +111,14 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
     if (dot(n, toLight) > 0.0) {  // the dark side needs no shadow ray
       vec3 from = p + n * offset;
       float reach = min(rmLightDistance(l, p), RM_SHADOW_REACH);
-#ifdef RM_BOUNDING_SPHERE
       // Nothing outside the bounds can cast a shadow: stop where the ray leaves them.
+#ifdef RM_BOUNDING_SPHERE
       vec2 span = rmRaySphere(from, toLight, RM_BOUNDING_SPHERE.xyz, RM_BOUNDING_SPHERE.w);
       reach = span.x > span.y ? 0.0 : min(reach, max(span.y, 0.0));
+#endif
+#ifdef RM_BOUNDING_BOX_MIN
+      vec2 box = rmRayBox(from, toLight, RM_BOUNDING_BOX_MIN, RM_BOUNDING_BOX_MAX);
+      reach = box.x > box.y ? 0.0 : min(reach, max(box.y, 0.0));
 #endif
 #if RM_SHADOWS == 1
       visible = rmHardShadow(from, toLight, offset, reach);
@@ -139,6 +146,11 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
 #endif
 #ifdef RM_BOUNDING_SPHERE
   s.boundSphere = RM_BOUNDING_SPHERE;
+#endif
+#ifdef RM_BOUNDING_BOX_MIN
+  s.boundBox = true;
+  s.boundMin = RM_BOUNDING_BOX_MIN;
+  s.boundMax = RM_BOUNDING_BOX_MAX;
 #endif
   vec3 primary = rd;
   vec3 color = vec3(0.0);

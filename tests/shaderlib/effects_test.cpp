@@ -211,6 +211,63 @@ RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
   EXPECT_EQ(lit("#define RM_SHADOW_REACH 1.5\n", true), open) << "the ball is beyond the reach";
 }
 
+// RM_BOUNDING_BOX_MIN/MAX: all of map()'s surface lies in the box. A ray
+// that misses it calls map() not once, one that hits draws the same colour
+// as without the box, and a shadow ray stops where it leaves the box.
+TEST_F(EglTest, ABoundingBoxSkipsWhatLiesOutsideIt) {
+  const std::string box = "#define RM_BOUNDING_BOX_MIN vec3(-1.1, -1.1, -1.1)\n"
+                          "#define RM_BOUNDING_BOX_MAX vec3(1.1, 1.1, 1.1)\n";
+  auto trace = [](const std::string& defines, const std::vector<glm::vec4>& rays) {
+    const std::string prelude = defines + R"(
+uniform vec4 iMouse;
+uniform vec3 iResolution;
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+int evaluations = 0;
+float map(vec3 p) { ++evaluations; return sdSphere(p, 1.0); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }
+)";
+    std::string error;
+    auto got = probe(prelude, "vec4(rmRender(vec3(0.0, 0.0, 5.0), normalize(P.xyz), 1e-3).xy, 0.0, float(evaluations))",
+                     rays, &error);
+    EXPECT_TRUE(got) << error;
+    return got.value_or(std::vector<glm::vec4>(rays.size()));
+  };
+  const std::vector<glm::vec4> rays = {{0.0f, 0.0f, -1.0f, 0.0f}, {0.1f, 0.15f, -1.0f, 0.0f}, {0.0f, 1.0f, -0.2f, 0.0f}};
+  const auto plain = trace("", rays), boxed = trace(box, rays);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_GT(boxed[i].w, 0.0f) << "ray " << i << " hits the sphere";
+    EXPECT_NEAR(boxed[i].x, plain[i].x, 1e-5f) << "ray " << i;
+    EXPECT_NEAR(boxed[i].y, plain[i].y, 1e-5f) << "ray " << i;
+  }
+  EXPECT_GT(plain[2].w, 0.0f) << "without the box, a ray up into the sky marches";
+  EXPECT_EQ(boxed[2].w, 0.0f) << "with it, the ray misses the box and calls map() not once";
+
+  // A point on the floor under a sun overhead, a ball 3 units up: a box
+  // that holds the ball lets it shade the point; one that stops below it
+  // (breaking the contract, to show the clipping) leaves the point lit.
+  auto lit = [](const std::string& bounds) {
+    const std::string prelude = "#define RM_SHADOWS 1\n#define RM_LIGHT_COUNT 1\n" + bounds + R"(
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+RmLight light(int i) { return rmDirectionalLight(vec3(0.0, 1.0, 0.0), vec3(1.0)); }
+float map(vec3 p) { return min(p.y, sdSphere(p - vec3(0.0, 3.0, 0.0), 1.0)); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
+)";
+    std::string error;
+    auto got = probe(prelude, "vec4(rmDirectLight(vec3(0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0), "
+                              "rmMaterial(vec3(0.5)), 1e-3), 0.0)", {glm::vec4(0)}, &error);
+    EXPECT_TRUE(got) << error;
+    return got ? (*got)[0].x : -1.0f;
+  };
+  const float shaded = lit(""), open = lit("#define RM_SHADOW_REACH 1.5\n");
+  EXPECT_LT(shaded, 0.5f * open);
+  EXPECT_EQ(lit("#define RM_BOUNDING_BOX_MIN vec3(-5.0, -1.0, -5.0)\n#define RM_BOUNDING_BOX_MAX vec3(5.0, 4.5, 5.0)\n"),
+            shaded) << "the box holds the ball";
+  EXPECT_EQ(lit("#define RM_BOUNDING_BOX_MIN vec3(-5.0, -1.0, -5.0)\n#define RM_BOUNDING_BOX_MAX vec3(5.0, 1.5, 5.0)\n"),
+            open) << "the shadow ray stops where it leaves the box";
+}
+
 // RM_COUNT's rmEvaluations counts every map() call the library makes: with
 // every effect on, it equals the count the scene keeps inside map() itself.
 TEST_F(RunTime, CountingCoversEveryCall) {
