@@ -67,7 +67,7 @@ std::vector<Setting> sweep() {
   // The loop a tutorial writes: a fixed absolute epsilon, no over-relaxation, no bounds.
   out.push_back({"textbook", "textbook",
                  {{"RM_HIT_PIXELS", "0.0"}, {"RM_HIT_EPSILON", "0.001"}, {"RM_OMEGA", "1.0"}},
-                 {"RM_BOUNDING_SPHERE"}});
+                 {"RM_BOUNDING_SPHERE", "RM_BOUNDING_BOX_MIN", "RM_BOUNDING_BOX_MAX"}});
   return out;
 }
 
