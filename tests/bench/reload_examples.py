@@ -6,7 +6,9 @@ Each scene's folder is copied to a temporary one, and the copy opens in an
 800x450 window (the default size; interface hidden, -v). Then five fresh
 edits are saved by rename, as editors save, each appending a digit to the
 scene's last decimal number (1.0 becomes 1.0001, then 1.0002: new code, the
-same picture), and three saves go back to a text saved before. Mesa's
+same picture), and three saves go back to a text saved before. A scene
+with no number of its own (default.frag, an #include of tori.frag) is
+skipped. Mesa's
 shader cache starts empty for each scene (MESA_SHADER_CACHE_DIR), so a
 fresh edit is compiled from scratch, as a real one is. Per save, from the -v log (CLOCK_MONOTONIC
 times): the first present of the new program (its first tiles) and its
@@ -65,6 +67,9 @@ def session(binary, scene, work):
     shutil.copytree(os.path.dirname(scene), folder, symlinks=True)
     copy = os.path.join(folder, os.path.basename(scene))
     original = log(copy)
+    if not LAST_NUMBER.search(original):  # default.frag: only an #include of tori.frag
+        print(f"{scene}: no number to edit; skipped", file=sys.stderr)
+        return None
     err = os.path.join(work, "stderr.txt")
     env = dict(os.environ, MESA_SHADER_CACHE_DIR=os.path.join(folder, ".mesa-cache"))
     with open(err, "w") as e, open(os.devnull, "w") as out:
@@ -77,7 +82,6 @@ def session(binary, scene, work):
         for i in range(FRESH + BACK):
             if i < FRESH:
                 text = LAST_NUMBER.sub(lambda m: f"{m.group(1)}{i + 1:03d}", original)
-                assert text != original, scene
                 texts.append(text)
             else:  # back to a text the window has built before (its cache)
                 text = texts[-2] if (i - FRESH) % 2 == 0 else texts[-1]
