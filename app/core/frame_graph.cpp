@@ -103,7 +103,7 @@ void FrameGraph::resize(Buffer& buffer, glm::ivec2 size, bool cube) const {
   const GLenum target = cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
   auto make = [&](gl::Texture* texture, std::array<gl::Framebuffer, 6>* fbos) {
     *texture = gl::make_texture(target);
-    glTextureStorage2D(texture->get(), mip_levels(size), cube ? GL_RGBA16F : GL_RGBA32F, size.x, size.y);
+    glTextureStorage2D(texture->get(), mip_levels(size), format_of(cube), size.x, size.y);
     const float zero[4] = {0, 0, 0, 0};
     for (int f = 0; f < (cube ? 6 : 1); ++f) {
       gl::Framebuffer& fbo = (*fbos)[static_cast<size_t>(f)];
@@ -130,9 +130,12 @@ void FrameGraph::resize(Buffer& buffer, glm::ivec2 size, bool cube) const {
   buffer.size = size;
 }
 
-std::map<fs::path, ChannelInputs> FrameGraph::channel_inputs(const Project& project) const {
-  std::map<fs::path, ChannelInputs> out;
-  for (size_t i = 0; i < project.passes().size(); ++i) out[project.passes()[i].file] = inputs_of(project, i);
+std::map<fs::path, FrameGraph::PassState> FrameGraph::pass_states(const Project& project) const {
+  std::map<fs::path, PassState> out;
+  for (size_t i = 0; i < project.passes().size(); ++i) {
+    const Pass& pass = project.passes()[i];
+    out[pass.file] = {pass.is_image ? RenderTarget::kFormat : format_of(pass.cube), inputs_of(project, i)};
+  }
   return out;
 }
 

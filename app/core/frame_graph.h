@@ -71,15 +71,22 @@ class FrameGraph {
 
   void restart();  // every buffer back to zero
   KeyboardState& keyboard() { return keyboard_; }
-  // What each pass reads now, by file: the textures and samplers bound to
-  // its channels (a builder warms a new program up with the same ones).
-  std::map<fs::path, ChannelInputs> channel_inputs(const Project& project) const;
+  // What each pass draws into and reads now, by file: its target's format
+  // and the textures and samplers bound to its channels (a builder warms a
+  // new program up with the same ones). The image pass's target is the
+  // caller's; a RenderTarget's format is given.
+  struct PassState {
+    GLenum format = RenderTarget::kFormat;
+    ChannelInputs channels;
+  };
+  std::map<fs::path, PassState> pass_states(const Project& project) const;
   // The latest output of a buffer pass (tests read it); 0 if none.
   GLuint buffer_texture(const fs::path& pass) const;
 
  private:
   // A buffer pass's pair of targets: RGBA32F pictures, or for a Cube A pass
   // RGBA16F cube maps (one framebuffer per face).
+  static GLenum format_of(bool cube) { return cube ? GL_RGBA16F : GL_RGBA32F; }
   struct Buffer {
     bool cube = false;
     int drawn_generation = -1;  // the pass's program generation its content was drawn with; -1: none

@@ -207,13 +207,14 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << '\n';
-    // Each new program is drawn once with what its pass reads now (a new
-    // pass, or a new image, reads nothing yet).
-    builder_.start([this, channels = graph_.channel_inputs(project_)] {
+    // Each new program is drawn once into its pass's format, with what the
+    // pass reads now (a new pass, or a new image, reads nothing yet).
+    builder_.start([this, states = graph_.pass_states(project_)] {
       return project_.prepare([&](const fs::path& pass, const Program& program) {
         if (!warm_up_) return;
-        const auto read = channels.find(pass);
-        warm_up(program, RenderTarget::kFormat, read == channels.end() ? ChannelInputs{} : read->second);
+        const auto state = states.find(pass);
+        if (state == states.end()) warm_up(program, RenderTarget::kFormat);
+        else warm_up(program, state->second.format, state->second.channels);
       });
     });
   }
