@@ -186,29 +186,33 @@ TEST_F(RunTime, ShadowRaysOnlyWhereTheSurfaceFacesTheLight) {
   for (size_t i = 64; i < 128; ++i) EXPECT_EQ(shadowed[i], plain[i]) << "dark pixel " << i << " traced a shadow ray";
 }
 
-// RM_SHADOW_REACH: a point on the floor under a sun straight overhead, with a
-// ball 3 units up. The ball shades the point while the reach passes it, and
-// no longer once the reach stops short of it (the point then looks as lit as
-// with no ball at all).
-TEST_F(EglTest, ShadowReachDecidesWhichOccludersCount) {
-  auto lit = [](const std::string& reach, bool ball) {
-    const std::string prelude = "#define RM_SHADOWS 1\n#define RM_LIGHT_COUNT 1\n" + reach + R"(
+// The light rmDirectLight gives a point on the floor under a sun straight
+// overhead, with `defines` ahead of shaderlib and, with `ball`, a ball 3
+// units up.
+float floor_light(const std::string& defines, bool ball) {
+  const std::string prelude = "#define RM_SHADOWS 1\n#define RM_LIGHT_COUNT 1\n" + defines + R"(
 #include <rm/sdf.glsl>
 #include <rm/render.glsl>
 RmLight light(int i) { return rmDirectionalLight(vec3(0.0, 1.0, 0.0), vec3(1.0)); }
 float map(vec3 p) { return min(p.y, )" + (ball ? "sdSphere(p - vec3(0.0, 3.0, 0.0), 1.0)" : "1e9") + R"(); }
 RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
 )";
-    std::string error;
-    auto got = probe(prelude, "vec4(rmDirectLight(vec3(0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0), "
-                              "rmMaterial(vec3(0.5)), 1e-3), 0.0)", {glm::vec4(0)}, &error);
-    EXPECT_TRUE(got) << error;
-    return got ? (*got)[0].x : -1.0f;
-  };
-  const float open = lit("", false);
-  EXPECT_LT(lit("", true), 0.5f * open) << "the ball casts no shadow with the default reach";
-  EXPECT_LT(lit("#define RM_SHADOW_REACH 2.5\n", true), 0.5f * open) << "the ball is within the reach";
-  EXPECT_EQ(lit("#define RM_SHADOW_REACH 1.5\n", true), open) << "the ball is beyond the reach";
+  std::string error;
+  auto got = probe(prelude, "vec4(rmDirectLight(vec3(0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0), "
+                            "rmMaterial(vec3(0.5)), 1e-3), 0.0)", {glm::vec4(0)}, &error);
+  EXPECT_TRUE(got) << error;
+  return got ? (*got)[0].x : -1.0f;
+}
+
+// RM_SHADOW_REACH: a point on the floor under a sun straight overhead, with a
+// ball 3 units up. The ball shades the point while the reach passes it, and
+// no longer once the reach stops short of it (the point then looks as lit as
+// with no ball at all).
+TEST_F(EglTest, ShadowReachDecidesWhichOccludersCount) {
+  const float open = floor_light("", false);
+  EXPECT_LT(floor_light("", true), 0.5f * open) << "the ball casts no shadow with the default reach";
+  EXPECT_LT(floor_light("#define RM_SHADOW_REACH 2.5\n", true), 0.5f * open) << "the ball is within the reach";
+  EXPECT_EQ(floor_light("#define RM_SHADOW_REACH 1.5\n", true), open) << "the ball is beyond the reach";
 }
 
 // RM_BOUNDING_BOX_MIN/MAX: all of map()'s surface lies in the box. A ray
@@ -246,26 +250,12 @@ RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }
   // A point on the floor under a sun overhead, a ball 3 units up: a box
   // that holds the ball lets it shade the point; one that stops below it
   // (breaking the contract, to show the clipping) leaves the point lit.
-  auto lit = [](const std::string& bounds) {
-    const std::string prelude = "#define RM_SHADOWS 1\n#define RM_LIGHT_COUNT 1\n" + bounds + R"(
-#include <rm/sdf.glsl>
-#include <rm/render.glsl>
-RmLight light(int i) { return rmDirectionalLight(vec3(0.0, 1.0, 0.0), vec3(1.0)); }
-float map(vec3 p) { return min(p.y, sdSphere(p - vec3(0.0, 3.0, 0.0), 1.0)); }
-RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
-)";
-    std::string error;
-    auto got = probe(prelude, "vec4(rmDirectLight(vec3(0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0), "
-                              "rmMaterial(vec3(0.5)), 1e-3), 0.0)", {glm::vec4(0)}, &error);
-    EXPECT_TRUE(got) << error;
-    return got ? (*got)[0].x : -1.0f;
-  };
-  const float shaded = lit(""), open = lit("#define RM_SHADOW_REACH 1.5\n");
+  const float shaded = floor_light("", true), open = floor_light("#define RM_SHADOW_REACH 1.5\n", true);
   EXPECT_LT(shaded, 0.5f * open);
-  EXPECT_EQ(lit("#define RM_BOUNDING_BOX_MIN vec3(-5.0, -1.0, -5.0)\n#define RM_BOUNDING_BOX_MAX vec3(5.0, 4.5, 5.0)\n"),
-            shaded) << "the box holds the ball";
-  EXPECT_EQ(lit("#define RM_BOUNDING_BOX_MIN vec3(-5.0, -1.0, -5.0)\n#define RM_BOUNDING_BOX_MAX vec3(5.0, 1.5, 5.0)\n"),
-            open) << "the shadow ray stops where it leaves the box";
+  EXPECT_EQ(floor_light("#define RM_BOUNDING_BOX_MIN vec3(-5.0, -1.0, -5.0)\n#define RM_BOUNDING_BOX_MAX vec3(5.0, 4.5, 5.0)\n",
+                        true), shaded) << "the box holds the ball";
+  EXPECT_EQ(floor_light("#define RM_BOUNDING_BOX_MIN vec3(-5.0, -1.0, -5.0)\n#define RM_BOUNDING_BOX_MAX vec3(5.0, 1.5, 5.0)\n",
+                        true), open) << "the shadow ray stops where it leaves the box";
 }
 
 // RM_COUNT's rmEvaluations counts every map() call the library makes: with
