@@ -3,7 +3,7 @@
 // plane and optional bounding volumes; also marches inside objects.
 // Provides: RM_HIT, RM_MISS, RM_OUT_OF_STEPS, RmMarchSettings, RmMarch,
 //   rmMarchSettings, rmHitThreshold, rmRaySphere, rmRayBox, rmRayGround,
-//   rmEndOnGround, rmMarch, rmSurfaceOffset.
+//   rmEndOnGround, rmMarchSpan, rmMarch, rmSurfaceOffset.
 // Needs: the scene's `float map(vec3 p)` (defined by the scene; map() calls go
 //   through rmMap, which RM_COUNT counts); rm/common.glsl and rm/map.glsl (included);
 //   map must be a bound (Lipschitz <= 1) for the march to be safe.
@@ -131,33 +131,41 @@ RmMarch rmEndOnGround(RmMarch m) {
   return m;
 }
 
-// Sphere traces the ray ro + t rd (rd unit) through map(). With omega > 1 each
-// step is stretched by omega; when the stretched step overshoots (the unbounding
-// spheres of two steps stop overlapping), it goes back to the plain step and
-// continues with omega = 1, so it never tunnels through a surface.
-RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
-  float tEnd = s.tMax;
+// Where a march of ro + t rd through map() starts (t) and gives up (tEnd),
+// after the analytic ground and the bounds, and what it returns when map() has
+// nothing in between (`miss`: a hit on the ground, or a miss). False when the
+// ray misses the bounds: `miss` is then the answer at once.
+bool rmMarchSpan(vec3 ro, vec3 rd, RmMarchSettings s, out float t, out float tEnd, out RmMarch miss) {
+  tEnd = s.tMax;
   float tGround = s.ground ? rmRayGround(ro, rd, s.groundHeight) : -1.0;
   bool groundAhead = tGround >= s.tMin && tGround <= s.tMax;
   if (groundAhead) tEnd = tGround;
   // A miss of everything in map() is a hit on the ground, if there is one.
-  RmMarch miss = RmMarch(tEnd, 0, groundAhead ? RM_HIT : RM_MISS, groundAhead,
-                         rmHitThreshold(s, tEnd, length(ro)));
-
-
-  float t = s.tMin;
+  miss = RmMarch(tEnd, 0, groundAhead ? RM_HIT : RM_MISS, groundAhead, rmHitThreshold(s, tEnd, length(ro)));
+  t = s.tMin;
   if (s.boundSphere.w > 0.0) {
     vec2 span = rmRaySphere(ro, rd, s.boundSphere.xyz, s.boundSphere.w);
-    if (span.x > span.y || span.y < t) return rmEndOnGround(miss);
+    if (span.x > span.y || span.y < t) return false;
     t = max(t, span.x);
     tEnd = min(tEnd, span.y);
   }
   if (s.boundBox) {
     vec2 span = rmRayBox(ro, rd, s.boundMin, s.boundMax);
-    if (span.x > span.y || span.y < t) return rmEndOnGround(miss);
+    if (span.x > span.y || span.y < t) return false;
     t = max(t, span.x);
     tEnd = min(tEnd, span.y);
   }
+  return true;
+}
+
+// Sphere traces the ray ro + t rd (rd unit) through map(). With omega > 1 each
+// step is stretched by omega; when the stretched step overshoots (the unbounding
+// spheres of two steps stop overlapping), it goes back to the plain step and
+// continues with omega = 1, so it never tunnels through a surface.
+RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
+  float t, tEnd;
+  RmMarch miss;
+  if (!rmMarchSpan(ro, rd, s, t, tEnd, miss)) return rmEndOnGround(miss);
 
   float originScale = length(ro);
   float omega = s.omega;
