@@ -1,6 +1,6 @@
 // cubes.frag: an endless grid of cubes from one cube, by domain repetition.
-// opRepeat returns each point's cell id; the colour, the size and the spin of
-// every cube come from a hash of it. Drag with the left mouse button to move
+// rm/grid.glsl hands mapCell each cell's id; the colour, the size and the
+// spin of every cube come from a hash of it. Drag with the left mouse button to move
 // the sun.
 #define RM_SHADOWS 1  // a soft shadow reads the cell-border term in map() as a near miss
 // In an endless grid nearly every sun ray meets a cube far away: only the
@@ -9,30 +9,31 @@
 #define RM_FOG 0.07
 #define RM_MAX_STEPS 200
 #define RM_SCENE_BACKGROUND
+// The grid: rays cross the cells whose cube they miss in one step each. A
+// cube of half-size 0.4 turns within 0.4 sqrt(3) = 0.69 of its cell's centre.
+#define RM_GRID_PERIOD vec3(1.8)
+#define RM_GRID_RADIUS 0.7
+#define RM_GRID_CONVEX  // a shadow ray leaving a cube never meets it again
 #include <rm/sdf.glsl>
 #include <rm/transforms.glsl>
 #include <rm/texture.glsl>
 #include <rm/camera.glsl>
 #include <rm/render.glsl>
 
-const vec3 kPeriod = vec3(1.8);
-
 vec3 background(vec3 rd) { return vec3(0.05, 0.07, 0.12); }
 
-float map(vec3 p) {
-  vec3 cell;
-  vec3 q = opRepeat(p, kPeriod, cell);
+// The cube of one cell; rm/grid.glsl makes map() from it. Each cube turns
+// about its own axis, so a neighbour's corner can come nearer than this cell's
+// cube: map() never steps past the border by more than the gap every cube
+// leaves (half-period 0.9 minus the radius 0.7).
+float mapCell(vec3 q, vec3 cell) {
   vec3 h = rmHash3(cell);
-  // Each cube turns about its own axis, so a neighbour's corner can come nearer
-  // than this cell's cube: never step past the border by more than the gap
-  // every cube leaves (half-period 0.9 minus half-diagonal 0.69).
   mat3 spin = rmRotationAxis(h - 0.5, iTime * (0.3 + h.x));
-  float d = sdRoundBox(opRotate(q, spin), vec3(0.3 + 0.1 * h.y), 0.05);
-  return min(d, opRepeatBorder(q, kPeriod) + 0.2);
+  return sdRoundBox(opRotate(q, spin), vec3(0.3 + 0.1 * h.y), 0.05);
 }
 
 RmMaterial material(vec3 p, vec3 n) {
-  vec3 cell = round(p / kPeriod);
+  vec3 cell = round(p / RM_GRID_PERIOD);
   RmMaterial m = rmMaterial(0.5 + 0.45 * cos(RM_TAU * (rmHash(cell) + vec3(0.0, 0.33, 0.67))));
   m.specular = 0.5;
   return m;

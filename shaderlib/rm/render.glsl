@@ -5,6 +5,7 @@
 //   when the scene defines no lights.
 // Needs: the scene contract:
 //   float map(vec3 p);                    a bound distance to the scene
+//     (with RM_GRID_PERIOD: float mapCell(vec3 q, vec3 cell), rm/grid.glsl)
 //   RmMaterial material(vec3 p, vec3 n);  the look at hit point p, normal n
 //   with RM_GROUND:  RmMaterial groundMaterial(vec3 p);
 //   with RM_LIGHT_COUNT: RmLight light(int i) for i < RM_LIGHT_COUNT
@@ -32,6 +33,9 @@
 //   RM_BOUNDING_BOX_MIN / RM_BOUNDING_BOX_MAX vec3 corners: the same with a
 //                  box, which fits a flat layout (objects on a floor) tighter;
 //                  both may be given, and a ray then keeps to where they overlap
+//   RM_GRID_PERIOD / RM_GRID_RADIUS  an endless grid of instances: the scene
+//                  gives mapCell(q, cell) instead of map() (rm/grid.glsl), and
+//                  primary rays and hard shadows cross empty cells in one step
 // Secondary rays are spent only where the material asks for them: shadow rays
 // for lit sides, reflection rays for reflectivity > 0, refraction for
 // transparency > 0. Without RM_REFRACTION a transparent material is opaque.
@@ -44,6 +48,12 @@
 #include <rm/march.glsl>
 #include <rm/normals.glsl>
 #include <rm/optics.glsl>
+// An endless grid. Every file it includes is included above: the host expands
+// each file once, whatever #if surrounds it, so none of them may first appear
+// inside this #ifdef.
+#ifdef RM_GRID_PERIOD
+#include <rm/grid.glsl>
+#endif
 
 // Mirror bounces and refraction segments followed per pixel.
 #ifndef RM_REFLECTIONS
@@ -120,7 +130,9 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
       vec2 box = rmRayBox(from, toLight, RM_BOUNDING_BOX_MIN, RM_BOUNDING_BOX_MAX);
       reach = box.x > box.y ? 0.0 : min(reach, max(box.y, 0.0));
 #endif
-#if RM_SHADOWS == 1
+#if RM_SHADOWS == 1 && defined(RM_GRID_PERIOD)
+      visible = rmHardShadowCells(from, toLight, offset, reach, RM_SHADOW_STEPS);
+#elif RM_SHADOWS == 1
       visible = rmHardShadow(from, toLight, offset, reach);
 #elif RM_SHADOWS == 2
       visible = rmSoftShadow(from, toLight, offset, reach, RM_SHADOW_SHARPNESS);
@@ -167,7 +179,11 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
     s.ground = !inside;
 #endif
 #endif
+#ifdef RM_GRID_PERIOD
+    RmMarch m = rmMarchGrid(ro, rd, s);
+#else
     RmMarch m = rmMarch(ro, rd, s);
+#endif
     if (m.outcome != RM_HIT) {
       color += throughput * rmBackground(rd);
       break;

@@ -30,20 +30,27 @@ std::vector<std::string> modules() {
 std::string module_text(const std::string& name) { return read_file(shaderlib_dir() / "rm" / (name + ".glsl")); }
 
 // What a scene supplies: Shadertoy inputs (rm/render's default light reads
-// iMouse), and map() and material() after the include, as the contract allows.
+// iMouse), the knobs a module requires (rm/grid's cell size) before the
+// include, and map() (rm/grid: mapCell()) and material() after it, as the
+// contract allows.
+std::string scene_inputs(const std::string& name) {
+  std::string inputs = "uniform vec4 iMouse;\nuniform vec3 iResolution;\n";
+  if (name == "grid") inputs += "#define RM_GRID_PERIOD vec3(2.0)\n#define RM_GRID_RADIUS 0.5\n";
+  return inputs;
+}
 std::string scene_stub(const std::string& name) {
+  if (name == "grid") return "float mapCell(vec3 q, vec3 cell) { return length(q) - 0.4; }\n";
   std::string stub = "float map(vec3 p) { return length(p) - 1.0; }\n";
   if (name == "render") stub += "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(1.0)); }\n";
   return stub;
 }
-const char* kInputs = "uniform vec4 iMouse;\nuniform vec3 iResolution;\n";
 
 class Module : public EglTest, public ::testing::WithParamInterface<std::string> {};
 
 TEST_P(Module, CompilesOnItsOwn) {
   const std::string& name = GetParam();
   std::string error;
-  EXPECT_TRUE(Probe::build(kInputs + ("#include <rm/" + name + ".glsl>\n") + scene_stub(name), "vec4(0.0)", &error))
+  EXPECT_TRUE(Probe::build(scene_inputs(name) + ("#include <rm/" + name + ".glsl>\n") + scene_stub(name), "vec4(0.0)", &error))
       << error;
 }
 
@@ -51,7 +58,7 @@ TEST_P(Module, CompilesWhenItsTextAppearsTwice) {
   const std::string& name = GetParam();
   const std::string text = module_text(name);
   std::string error;
-  EXPECT_TRUE(Probe::build(kInputs + text + "\n" + text + "\n" + scene_stub(name), "vec4(0.0)", &error)) << error;
+  EXPECT_TRUE(Probe::build(scene_inputs(name) + text + "\n" + text + "\n" + scene_stub(name), "vec4(0.0)", &error)) << error;
 }
 
 TEST_P(Module, HasAHeaderAndAnIncludeGuard) {
