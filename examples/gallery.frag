@@ -20,10 +20,24 @@
 
 const float kSpacing = 1.6;
 
+// What depends on the time only, worked out once a pixel in animate()
+// instead of at every map() call: llvmpipe evaluates map() dozens of times a
+// pixel, and every case of the switch below in each of them.
+mat3 turn;        // every exhibit turns about y
+float swing;      // sin(t): the twist's rate, the onion's cut, the carving's size
+float bob;        // the smooth-union sphere's height
+float twistLipschitz;
+
+void animate() {
+  turn = rmRotationY(0.5 * iTime);
+  swing = sin(iTime);
+  bob = 0.25 * sin(2.0 * iTime);
+  twistLipschitz = opTwistLipschitz(2.0, 0.55);
+}
+
 // Object i, centred at the origin, resting 0.55 above its plinth's base.
 float exhibit(int i, vec3 p) {
-  float t = iTime;
-  p = opRotate(p, rmRotationY(0.5 * t));
+  p = opRotate(p, turn);
   switch (i) {
     // primitives
     case 0: return sdOctahedron(p, 0.42);
@@ -33,32 +47,38 @@ float exhibit(int i, vec3 p) {
     case 3: {  // twist stretches space: its constant holds within 0.55 of the axis
       float bound = sdCappedCylinder(p, 0.25, 0.45);
       if (bound > 0.3) return bound;
-      return sdBox(opTwist(p, 2.0 * sin(t)), vec3(0.15, 0.4, 0.15)) / opTwistLipschitz(2.0, 0.55);
+      return sdBox(opTwist(p, 2.0 * swing), vec3(0.15, 0.4, 0.15)) / twistLipschitz;
     }
     case 4: {
       float cell;
       vec2 q = opRepeatPolar(p.xz, 8.0, cell);
       return sdCapsule(vec3(q.x, p.y, q.y), vec3(0.15, -0.3, 0.0), vec3(0.32, 0.3, 0.0), 0.05);
     }
-    case 5: return opSubtraction(opOnion(sdSphere(p, 0.38), 0.03), p.y - 0.15 * sin(t));
+    case 5: return opSubtraction(opOnion(sdSphere(p, 0.38), 0.03), p.y - 0.15 * swing);
     // smooth booleans
-    case 6: return opSmoothUnion(sdSphere(p - vec3(0.0, 0.25 * sin(2.0 * t), 0.0), 0.22), sdBox(p, vec3(0.3, 0.08, 0.3)), 0.15);
+    case 6: return opSmoothUnion(sdSphere(p - vec3(0.0, bob, 0.0), 0.22), sdBox(p, vec3(0.3, 0.08, 0.3)), 0.15);
     case 7: return opSmoothIntersection(sdSphere(p, 0.4), sdBox(p, vec3(0.3)), 0.08);
-    default: return opSmoothSubtraction(sdRoundBox(p, vec3(0.32), 0.04), sdSphere(p, 0.33 + 0.05 * sin(t)), 0.05);
+    default: return opSmoothSubtraction(sdRoundBox(p, vec3(0.32), 0.04), sdSphere(p, 0.33 + 0.05 * swing), 0.05);
   }
 }
 
-vec3 slot(int i) { return vec3(kSpacing * (float(i % 3) - 1.0), 0.85, kSpacing * (float(i / 3) - 1.0)); }
+// p relative to the centre of its nearest slot, whose index goes to i.
+vec3 slotSpace(vec3 p, out int i) {
+  vec3 cell;
+  vec3 q = opRepeatLimited(p - vec3(0.0, 0.85, 0.0), vec3(kSpacing, 10.0, kSpacing), vec3(-1.0, 0.0, -1.0),
+                           vec3(1.0, 0.0, 1.0), cell);
+  i = int(cell.x + 1.0) + 3 * int(cell.z + 1.0);
+  return q;
+}
+
+float plinth(vec3 q) { return sdRoundBox(q + vec3(0.0, 0.6, 0.0), vec3(0.35, 0.25, 0.35), 0.03); }
 
 RmHit scene(vec3 p) {
   // A plinth under every object, then the object nearest to p's slot only:
   // objects are far apart, so the nearest cell's object bounds the rest.
-  vec3 cell;
-  vec3 q = opRepeatLimited(p - vec3(0.0, 0.85, 0.0), vec3(kSpacing, 10.0, kSpacing), vec3(-1.0, 0.0, -1.0),
-                           vec3(1.0, 0.0, 1.0), cell);
-  int i = int(cell.x + 1.0) + 3 * int(cell.z + 1.0);
-  RmHit plinth = rmHit(sdRoundBox(q + vec3(0.0, 0.6, 0.0), vec3(0.35, 0.25, 0.35), 0.03), -1.0);
-  return opUnion(plinth, rmHit(exhibit(i, q), float(i)));
+  int i;
+  vec3 q = slotSpace(p, i);
+  return opUnion(rmHit(plinth(q), -1.0), rmHit(exhibit(i, q), float(i)));
 }
 
 float map(vec3 p) { return scene(p).d; }
@@ -74,8 +94,9 @@ RmLight light(int i) {
 }
 
 RmMaterial material(vec3 p, vec3 n) {
-  float id = scene(p).id;
-  RmMaterial m = rmMaterial(id < 0.0 ? vec3(0.75) : vec3(0.85));
+  // On a plinth or not: the plinth alone tells, without all nine exhibits.
+  int i;
+  RmMaterial m = rmMaterial(plinth(slotSpace(p, i)) < 0.01 ? vec3(0.75) : vec3(0.85));
   m.specular = 0.5;
   m.shininess = 48.0;
   return m;
@@ -84,6 +105,7 @@ RmMaterial material(vec3 p, vec3 n) {
 RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.35)); }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  animate();
   RmCamera cam = rmLookAt(vec3(0.0, 4.2, 5.2), vec3(0.0, 0.5, 0.2), 0.8);
   vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);

@@ -51,8 +51,12 @@ RmHit mirror(vec3 p) {
   return opUnion(rmHit(glass, kMirror), rmHit(frame, kMirrorFrame));
 }
 
+// The spectacles' slow turn, worked out once a pixel in mainImage instead of
+// at every map() call.
+mat3 spectaclesTurn;
+
 RmHit scene(vec3 p) {
-  RmHit h = spectacles(opRotate(p - vec3(0.0, 0.85, 0.55), rmRotationY(0.25 * sin(0.5 * iTime))));
+  RmHit h = spectacles(opRotate(p - vec3(0.0, 0.85, 0.55), spectaclesTurn));
   return opUnion(opUnion(h, phone(p)), mirror(p));
 }
 
@@ -87,6 +91,7 @@ RmMaterial material(vec3 p, vec3 n) {
 RmMaterial groundMaterial(vec3 p) { return rmMaterial(mix(vec3(0.5, 0.45, 0.4), vec3(0.6, 0.55, 0.5), rmChecker(p.xz * 2.0))); }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  spectaclesTurn = rmRotationY(0.25 * sin(0.5 * iTime));
   RmCamera cam = rmLookAt(vec3(-0.6, 1.2, 3.1), vec3(0.3, 0.85, 0.0), 0.7);
   vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
