@@ -13,7 +13,8 @@
 // Knobs (required): RM_GRID_PERIOD vec3, the cell size; RM_GRID_RADIUS, the
 //   bounding sphere of every instance, less than half the smallest period.
 //   RM_GRID_CONVEX says every instance is convex, so a shadow ray that leaves
-//   one starts in the next cell.
+//   one starts in the next cell. RM_GRID_MARCH 0 has rm/render.glsl march the
+//   grid's map() the plain way instead, to compare.
 #ifndef RM_GRID_GLSL
 #define RM_GRID_GLSL
 
@@ -24,6 +25,11 @@
 #include <rm/common.glsl>
 #include <rm/map.glsl>
 #include <rm/march.glsl>
+
+// 1: rm/render.glsl marches cell by cell; 0: rmMarch and rmHardShadow on map().
+#ifndef RM_GRID_MARCH
+#define RM_GRID_MARCH 1
+#endif
 
 float mapCell(vec3 q, vec3 cell);
 

@@ -130,7 +130,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
       vec2 box = rmRayBox(from, toLight, RM_BOUNDING_BOX_MIN, RM_BOUNDING_BOX_MAX);
       reach = box.x > box.y ? 0.0 : min(reach, max(box.y, 0.0));
 #endif
-#if RM_SHADOWS == 1 && defined(RM_GRID_PERIOD)
+#if RM_SHADOWS == 1 && defined(RM_GRID_PERIOD) && RM_GRID_MARCH
       visible = rmHardShadowCells(from, toLight, offset, reach, RM_SHADOW_STEPS);
 #elif RM_SHADOWS == 1
       visible = rmHardShadow(from, toLight, offset, reach);
@@ -179,7 +179,7 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
     s.ground = !inside;
 #endif
 #endif
-#ifdef RM_GRID_PERIOD
+#if defined(RM_GRID_PERIOD) && RM_GRID_MARCH
     RmMarch m = rmMarchGrid(ro, rd, s);
 #else
     RmMarch m = rmMarch(ro, rd, s);

@@ -207,6 +207,38 @@ TEST_F(Grid, HardShadowsMeetTheSpheresOnTheirSegment) {
   expect_agree(shadows("", leaving), leaving, own);
 }
 
+// rm/render.glsl marches a grid cell by cell, and with RM_GRID_MARCH 0 the
+// plain way: the same colours, for fewer map() calls.
+TEST_F(Grid, RenderMarchesTheGridCellByCellUnlessToldNotTo) {
+  std::vector<glm::vec4> ps, qs;
+  for (const Ray& r : rays()) {
+    if (!analytic(r).clear) continue;
+    ps.emplace_back(glm::vec3(r.ro), 0), qs.emplace_back(glm::vec3(r.rd), 0);
+  }
+  auto render = [&](const std::string& defines) {
+    const std::string prelude = "uniform vec4 iMouse;\nuniform vec3 iResolution;\n#define RM_COUNT\n#define RM_SHADOWS 1\n"
+                                "#define RM_MAX_DISTANCE 30.0\n#define RM_MAX_STEPS 2000\n#define RM_SHADOW_STEPS 2000\n" + defines +
+                                "#define RM_GRID_PERIOD vec3(2.0, 1.5, 2.5)\n#define RM_GRID_RADIUS 0.6\n"
+                                "#include <rm/render.glsl>\n" + kInstance +
+                                "float mapCell(vec3 q, vec3 cell) { return instance(q, cell); }\n"
+                                "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(0.5 + 0.5 * n); }\n";
+    std::string error;
+    auto got = probe(prelude, "vec4(rmRender(P.xyz, Q.xyz, 1e-3), float(rmEvaluations))", ps, &error, qs);
+    EXPECT_TRUE(got) << error;
+    return got.value_or(std::vector<glm::vec4>(ps.size()));
+  };
+  const auto cells = render(""), plain = render("#define RM_GRID_MARCH 0\n");
+  double cell_calls = 0, plain_calls = 0;
+  size_t alike = 0;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    alike += glm::length(glm::vec3(cells[i]) - glm::vec3(plain[i])) < 2e-2f;
+    cell_calls += cells[i].w;
+    plain_calls += plain[i].w;
+  }
+  EXPECT_GT(alike, 0.98 * static_cast<double>(ps.size())) << "of " << ps.size() << " rays";
+  EXPECT_LT(cell_calls, 0.7 * plain_calls) << "cells " << cell_calls << ", plain " << plain_calls;
+}
+
 // Without its knobs the module says what it needs, in its own file.
 TEST_F(Grid, WithoutACellSizeSaysWhatItNeeds) {
   std::string error;
