@@ -1,5 +1,8 @@
 #include "commands/render.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/supersampling.h"
 #include "core/views.h"
 #include "headless/render_command.h"
@@ -11,12 +14,20 @@ RenderCommand::RenderCommand(CLI::App& app)
   CLI::App& c = *command_;
   c.add_option("scene", scene_, "Shader or Shadertoy .json to render")->required()->type_name("SCENE");
   c.add_option("--media", media_, "Where a .json's shadertoy.com media are, by file name")->type_name("DIR");
-  c.add_option("-o,--output", out_, "Output image: .png (8-bit, clamped) or .exr (raw float)")->required()->type_name("OUT");
+  c.add_option("-o,--output", out_, "Output image: .png (8-bit, clamped) or .exr (raw float); or a video through "
+                                    "ffmpeg: .mp4 or .mov (H.264), .webm (VP9), .gif")->required()->type_name("OUT");
   source_.add_to(c);
   c.add_option("--size", size_, "Picture size in pixels")->type_name("WxH");
   c.add_option("--time", time_, "iTime of the (first) frame in seconds")->type_name("T");
   c.add_option("--frame", frame_, "iFrame of the (first) frame (default: time * fps)")->type_name("N")->check(CLI::NonNegativeNumber);
-  c.add_option("--frames", frames_, "Render COUNT frames; OUT needs a counter like frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
+  auto* frames = c.add_option("--frames", frames_, "Render COUNT frames; OUT is a video, or needs a counter like "
+                                                   "frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
+  c.add_option("--duration", duration_, "Render SECONDS of frames at --fps (instead of --frames)")
+      ->type_name("SECONDS")->check(finite_between(0.001, 1e6))->excludes(frames);
+  c.add_option("--codec", codec_, "A video's ffmpeg encoder (default: libx264 for .mp4 and .mov, libvpx-vp9 for .webm)")
+      ->type_name("NAME");
+  c.add_option("--crf", crf_, "A video's quality, lower is better (default: 18 for H.264, 32 for VP9)")
+      ->type_name("N")->check(CLI::Range(0, 63));
   c.add_option("--fps", fps_, "Frames per second of a sequence")->type_name("F")->check(finite_between(0.001, 100000.0));
   c.add_option("--mouse", mouse_, "iMouse as X,Y[,CX,CY] in pixels")->type_name("X,Y[,CX,CY]");
   c.add_option("--set", sets_, "A value for one of the shader's own uniforms (repeatable; a screenshot records "
@@ -45,6 +56,9 @@ int RenderCommand::run() const {
   if (frame_ >= 0) req.frame = frame_;
   req.frames = frames_;
   req.fps = fps_;
+  if (duration_ > 0) req.frames = std::max(1, static_cast<int>(std::lround(duration_ * fps_)));
+  req.codec = codec_;
+  if (crf_ >= 0) req.crf = crf_;
   if (!view_.empty()) req.view = *view_from_string(view_);
   if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);
   if (!date_.empty()) req.date = parse_date(date_);

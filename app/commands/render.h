@@ -1,5 +1,5 @@
-// `raymarching render SCENE -o OUT`: a still or a frame sequence, headless
-// through EGL (headless/render_command does the rendering).
+// `raymarching render SCENE -o OUT`: a still, a frame sequence or a video,
+// headless through EGL (headless/render_command does the rendering).
 #pragma once
 #include <CLI/CLI.hpp>
 #include <string>
@@ -21,6 +21,9 @@ class RenderCommand {
   std::vector<std::string> sets_;  // --set NAME=VALUE
   int frame_ = -1, frames_ = 0, samples_ = 1;
   double fps_ = 60.0;
+  double duration_ = 0;  // --duration: seconds of frames at fps_
+  std::string codec_;    // --codec
+  int crf_ = -1;         // --crf; -1: the codec's default
   double timeout_ = 0;
   SourceFlags source_;
   ChannelFlags channels_;

@@ -24,12 +24,6 @@ bool is_float_format(const fs::path& path) {
   return ext == ".exr" || ext == ".hdr";
 }
 
-fs::path temporary_sibling(const fs::path& path) {
-  static std::atomic<unsigned> counter{0};
-  return path.parent_path() / ("." + path.stem().string() + ".tmp-" + std::to_string(getpid()) + "-" +
-                               std::to_string(counter++) + path.extension().string());
-}
-
 fs::path numbered(const fs::path& path, int n) {
   return path.parent_path() / (path.stem().string() + "-" + std::to_string(n) + path.extension().string());
 }
@@ -102,6 +96,12 @@ std::string writable_image_extensions() {
   return list;
 }
 
+fs::path temporary_sibling(const fs::path& path) {
+  static std::atomic<unsigned> counter{0};
+  return path.parent_path() / ("." + path.stem().string() + ".tmp-" + std::to_string(getpid()) + "-" +
+                               std::to_string(counter++) + path.extension().string());
+}
+
 std::optional<std::string> check_output_path(const fs::path& path) {
   if (path.extension().empty())
     return "'" + path.string() + "' has no extension to choose an image format (" + writable_image_extensions() + ")";
@@ -112,6 +112,10 @@ std::optional<std::string> check_output_path(const fs::path& path) {
     return "'" + path.string() + "': cannot write images of type '" + path.extension().string() + "' (" +
            writable_image_extensions() + ")";
   }
+  return check_output_directory(path);
+}
+
+std::optional<std::string> check_output_directory(const fs::path& path) {
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
   if (!fs::exists(dir, ec)) return "'" + path.string() + "': directory '" + dir.string() + "' does not exist";
@@ -142,12 +146,7 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
     if (as_float) {
       ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
     } else {
-      std::vector<unsigned char> bytes(image.rgba.size());
-      std::transform(image.rgba.begin(), image.rgba.end(), bytes.begin(), [](float v) {
-        v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-        return static_cast<unsigned char>(v * 255.0f + 0.5f);
-      });
-      ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+      ok = out->write_image(OIIO::TypeDesc::UINT8, to_rgba8(image).data());
     }
     ok = out->close() && ok;
   }

@@ -25,6 +25,14 @@ enum class Overwrite { Replace, Never };
 // write and a directory that exists. Cheap: call it before rendering.
 std::optional<std::string> check_output_path(const fs::path& path);
 
+// Returns an error message, or nullopt when the directory `path` would be
+// written in exists and is writable.
+std::optional<std::string> check_output_directory(const fs::path& path);
+
+// A hidden name beside `path`, unique in this process, with path's extension:
+// where a file is written before it is renamed to `path`.
+fs::path temporary_sibling(const fs::path& path);
+
 // The extensions write_image can write, as ".png, .exr, ..." (from OIIO).
 std::string writable_image_extensions();
 

@@ -1,6 +1,7 @@
 #include "core/image.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rm {
 
@@ -10,6 +11,15 @@ Image Image::flipped() const {
   for (int y = 0; y < height; ++y)
     std::copy_n(&rgba[static_cast<size_t>(height - 1 - y) * stride], stride, &out.rgba[static_cast<size_t>(y) * stride]);
   return out;
+}
+
+std::vector<unsigned char> to_rgba8(const Image& image) {
+  std::vector<unsigned char> bytes(image.rgba.size());
+  std::transform(image.rgba.begin(), image.rgba.end(), bytes.begin(), [](float v) {
+    v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+    return static_cast<unsigned char>(v * 255.0f + 0.5f);
+  });
+  return bytes;
 }
 
 }  // namespace rm

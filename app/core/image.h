@@ -15,4 +15,8 @@ struct Image {
   Image flipped() const;
 };
 
+// The pixels as an 8-bit file or a video stores them: clamped to [0, 1], NaN
+// as 0, rounded to the nearest of 256 steps.
+std::vector<unsigned char> to_rgba8(const Image& image);
+
 }  // namespace rm

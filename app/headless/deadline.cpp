@@ -30,6 +30,16 @@ bool Deadline::write(const std::filesystem::path& path, const std::function<bool
   return ok;
 }
 
+bool Deadline::guard(const std::function<bool()>& step) {
+  std::lock_guard lock(mutex_);
+  return step();
+}
+
+void Deadline::on_expiry(std::function<void()> undo) {
+  std::lock_guard lock(mutex_);
+  undo_.push_back(std::move(undo));
+}
+
 void Deadline::watch(double seconds) {
   std::unique_lock lock(mutex_);
   // Past a few years the limit is no limit: a double that large would overflow the clock.
@@ -37,12 +47,13 @@ void Deadline::watch(double seconds) {
                                                             std::chrono::duration<double>(std::min(seconds, 1e8)));
   if (ended_.wait_until(lock, limit, [this] { return done_; })) return;
   // The lock is ours: no write is under way, and none starts.
+  for (const auto& undo : undo_) undo();
   for (const auto& path : written_) {
     std::error_code ec;
     std::filesystem::remove(path, ec);
   }
   std::fprintf(stderr, "raymarching: error: the render ran past %s s and was stopped; %s\n", option_.c_str(),
-               written_.empty() ? "nothing was written" : "the frames it wrote are removed");
+               written_.empty() && undo_.empty() ? "nothing was written" : "what it wrote is removed");
   std::fflush(stderr);
   std::_Exit(kExitTimeout);  // the GL thread may be inside a draw: no destructors
 }

@@ -2,7 +2,7 @@
 // interrupted, so when the limit passes a watch thread ends the process: one
 // line on stderr, every file the run wrote removed, and exit status
 // kExitTimeout. A file being written is finished first, so no half file is
-// left under any name.
+// left under any name; a video being encoded is abandoned (on_expiry).
 #pragma once
 #include <condition_variable>
 #include <filesystem>
@@ -25,6 +25,11 @@ class Deadline {
   // Runs `write`, which writes `path`, whole: the limit waits for it. The
   // file is removed if the limit passes later in the run.
   bool write(const std::filesystem::path& path, const std::function<bool()>& write);
+  // Runs `step` whole: the limit waits for it (a frame sent to ffmpeg).
+  bool guard(const std::function<bool()>& step);
+  // Runs `undo` if the limit passes: for what is not a whole file yet (a
+  // video being encoded).
+  void on_expiry(std::function<void()> undo);
 
  private:
   void watch(double seconds);
@@ -34,6 +39,7 @@ class Deadline {
   std::condition_variable ended_;
   bool done_ = false;
   std::vector<std::filesystem::path> written_;
+  std::vector<std::function<void()>> undo_;
   std::thread thread_;
 };
 

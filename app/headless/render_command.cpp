@@ -1,7 +1,5 @@
 #include "headless/render_command.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -17,6 +15,8 @@
 #include "core/scene.h"
 #include "headless/deadline.h"
 #include "headless/egl_context.h"
+#include "headless/progress.h"
+#include "headless/video.h"
 
 namespace rm {
 
@@ -28,16 +28,6 @@ int fail(const std::string& message, int code) {
 }
 
 void print_diagnostics(const Diagnostics& diags) { std::cerr << join(diags); }
-
-void show_progress(int done, int total) {
-  if (!isatty(STDERR_FILENO)) return;
-  constexpr int kWidth = 30;
-  const int filled = total ? done * kWidth / total : kWidth;
-  std::fprintf(stderr, "\r[%s%s] %d/%d", std::string(static_cast<size_t>(filled), '#').c_str(),
-               std::string(static_cast<size_t>(kWidth - filled), ' ').c_str(), done, total);
-  if (done == total) std::fputc('\n', stderr);
-  std::fflush(stderr);
-}
 
 }  // namespace
 
@@ -62,10 +52,23 @@ std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& 
 int render_command(const RenderRequest& req) {
   // Everything that can be known wrong is reported before any GL work.
   const bool sequence = req.frames > 0;
-  const auto first_out = sequence ? sequence_path(req.out, 0) : std::optional(req.out);
-  if (!first_out)
-    return fail("'" + req.out.string() + "': --frames needs a counter such as %04d in the output name", kExitUsage);
-  if (auto problem = check_output_path(*first_out)) return fail(*problem, kExitUsage);
+  const bool video = is_video_path(req.out);
+  const VideoSettings video_settings{req.size, req.fps, req.codec, req.crf};
+  if (video) {
+    if (!sequence)
+      return fail("'" + req.out.string() + "': a video needs --frames COUNT or --duration SECONDS", kExitUsage);
+    if (auto problem = check_video(req.out, video_settings)) return fail(*problem, kExitUsage);
+  } else {
+    if (!req.codec.empty() || req.crf)
+      return fail("--codec and --crf are for a video (" + video_extensions() + "), not '" + req.out.string() + "'",
+                  kExitUsage);
+    const auto first_out = sequence ? sequence_path(req.out, 0) : std::optional(req.out);
+    if (!first_out)
+      return fail("'" + req.out.string() + "': --frames needs a counter such as %04d in the output name (or a video: " +
+                      video_extensions() + ")",
+                  kExitUsage);
+    if (auto problem = check_output_path(*first_out)) return fail(*problem, kExitUsage);
+  }
   for (size_t i = 0; i < req.channels.size(); ++i) {
     const auto& path = req.channels[i];
     std::string error;
@@ -85,6 +88,8 @@ int render_command(const RenderRequest& req) {
 
   char limit[64];
   std::snprintf(limit, sizeof limit, "--timeout %g", req.timeout);
+  // Declared before the deadline, whose watch may abandon it until the deadline is gone.
+  std::unique_ptr<VideoEncoder> encoder;
   Deadline deadline(req.timeout, limit);
   std::string error;
   auto context = EglContext::create(&error);
@@ -131,21 +136,34 @@ int render_command(const RenderRequest& req) {
   // would show live: every frame before it is drawn first.
   const bool warm_up = project.has_feedback() && first_frame > 0;
   const int total = (warm_up ? first_frame : 0) + count;
+  Progress progress(total);
   for (int f = 0; warm_up && f < first_frame; ++f) {
     graph.draw_buffers(project, inputs_at(f, f / req.fps, (f - first_frame) / req.fps), req.size);
     if (f % 16 == 15) glFinish();  // bound the work queued on software renderers
-    show_progress(f + 1, total);
+    progress.show(f + 1);
+  }
+  // A video's frames go to ffmpeg as they are drawn; its destructor abandons
+  // an encode that does not finish, and so does the time limit.
+  if (video) {
+    encoder = VideoEncoder::start(req.out, video_settings, &error);
+    if (!encoder) return fail(error, kExitUsage);
+    deadline.on_expiry([&encoder] { encoder->abandon(); });
   }
   for (int i = 0; i < count; ++i) {
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
     Image image = graph.render_frame(project, in, req.size, req.samples);
-    const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
-    const bool written = deadline.write(out, [&] {
-      return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples), Overwrite::Replace, &error).has_value();
-    });
-    if (!written) return fail(error, kExitUsage);
-    if (sequence || warm_up) show_progress(total - count + i + 1, total);
+    if (video) {
+      if (!deadline.guard([&] { return encoder->add(image, &error); })) return fail(error, kExitUsage);
+    } else {
+      const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
+      const bool written = deadline.write(out, [&] {
+        return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples), Overwrite::Replace, &error).has_value();
+      });
+      if (!written) return fail(error, kExitUsage);
+    }
+    if (sequence || warm_up) progress.show(total - count + i + 1);
   }
+  if (video && !deadline.write(req.out, [&] { return encoder->finish(&error); })) return fail(error, kExitUsage);
   return kExitOk;
 }
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -17,7 +18,7 @@ namespace rm {
 struct RenderRequest {
   std::filesystem::path scene;
   SourceOptions source;
-  std::filesystem::path out;  // with a %d counter when frames > 0
+  std::filesystem::path out;  // a video (headless/video.h), or with a %d counter when frames > 0
   glm::ivec2 size{640, 360};
   double time = 0.0;
   std::optional<int> frame;   // default: the frame the time falls in at `fps`
@@ -31,6 +32,9 @@ struct RenderRequest {
   std::vector<std::string> sets;  // --set NAME=VALUE: the shader's own uniforms
   double timeout = 0;  // seconds; 0: none (see headless/deadline)
   int samples = 1;     // supersamples per pixel (core/supersampling.h)
+  std::string codec;        // a video's ffmpeg encoder; empty: the container's default
+  std::optional<int> crf;   // a video's quality; empty: the codec's default
+
 };
 
 int render_command(const RenderRequest& request);
