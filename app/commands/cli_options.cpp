@@ -47,6 +47,17 @@ glm::ivec2 parse_size(const std::string& text, const char* option) {
   return {static_cast<int>(w), static_cast<int>(h)};
 }
 
+glm::ivec2 parse_frame_range(const std::string& text, const char* option) {
+  const std::string expected = std::string(option) + " '" + text + "': expected FIRST:LAST, frame numbers from 0, e.g. 0:23";
+  if (text.size() > kMaxValueLength) throw UsageError{expected};
+  static const std::regex re(R"(^\s*(\d{1,9})\s*:\s*(\d{1,9})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) throw UsageError{expected};
+  const glm::ivec2 range(std::stoi(m[1].str()), std::stoi(m[2].str()));
+  if (range.x > range.y) throw UsageError{std::string(option) + " '" + text + "': FIRST comes after LAST"};
+  return range;
+}
+
 double parse_number(const std::string& text, const std::string& what) {
   size_t used = 0;
   double v = 0;

@@ -21,6 +21,8 @@ struct UsageError {
 
 glm::ivec2 parse_size(const std::string& text, const char* option);
 double parse_number(const std::string& text, const std::string& what);
+// FIRST:LAST, both frame numbers (from 0, LAST included), FIRST <= LAST.
+glm::ivec2 parse_frame_range(const std::string& text, const char* option);
 // An option's check: a finite number from `low` to `high`. CLI11's Range
 // lets NaN through, and prints DBL_MAX in full when a bound is open.
 CLI::Validator finite_between(double low, double high);

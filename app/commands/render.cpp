@@ -24,6 +24,9 @@ RenderCommand::RenderCommand(CLI::App& app)
                                                    "frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
   c.add_option("--duration", duration_, "Render SECONDS of frames at --fps (instead of --frames)")
       ->type_name("SECONDS")->check(finite_between(0.001, 1e6))->excludes(frames);
+  c.add_option("--frame-range", frame_range_, "Render only frames FIRST to LAST of the --frames sequence, numbered "
+                                            "as in the whole run, so that runs on several machines make it up")
+      ->type_name("FIRST:LAST");
   c.add_option("--codec", codec_, "A video's ffmpeg encoder (default: libx264 for .mp4 and .mov, libvpx-vp9 for .webm)")
       ->type_name("NAME");
   c.add_option("--crf", crf_, "A video's quality, lower is better (default: 18 for H.264, 32 for VP9)")
@@ -58,6 +61,7 @@ int RenderCommand::run() const {
   req.fps = fps_;
   if (duration_ > 0) req.frames = std::max(1, static_cast<int>(std::lround(duration_ * fps_)));
   req.codec = codec_;
+  if (!frame_range_.empty()) req.frame_range = parse_frame_range(frame_range_, "--frame-range");
   if (crf_ >= 0) req.crf = crf_;
   if (!view_.empty()) req.view = *view_from_string(view_);
   if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);

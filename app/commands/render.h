@@ -23,6 +23,7 @@ class RenderCommand {
   double fps_ = 60.0;
   double duration_ = 0;  // --duration: seconds of frames at fps_
   std::string codec_;    // --codec
+  std::string frame_range_;  // --frame-range FIRST:LAST
   int crf_ = -1;         // --crf; -1: the codec's default
   double timeout_ = 0;
   SourceFlags source_;

@@ -35,9 +35,10 @@ bool Deadline::guard(const std::function<bool()>& step) {
   return step();
 }
 
-void Deadline::on_expiry(std::function<void()> undo) {
+void Deadline::on_expiry(std::function<void()> undo, std::string what) {
   std::lock_guard lock(mutex_);
   undo_.push_back(std::move(undo));
+  undo_what_ = std::move(what);
 }
 
 void Deadline::watch(double seconds) {
@@ -53,7 +54,9 @@ void Deadline::watch(double seconds) {
     std::filesystem::remove(path, ec);
   }
   std::fprintf(stderr, "raymarching: error: the render ran past %s s and was stopped; %s\n", option_.c_str(),
-               written_.empty() && undo_.empty() ? "nothing was written" : "what it wrote is removed");
+               !undo_.empty()      ? (undo_what_ + " is removed").c_str()
+               : written_.empty()  ? "nothing was written"
+                                   : "the frames it wrote are removed");
   std::fflush(stderr);
   std::_Exit(kExitTimeout);  // the GL thread may be inside a draw: no destructors
 }

@@ -28,8 +28,8 @@ class Deadline {
   // Runs `step` whole: the limit waits for it (a frame sent to ffmpeg).
   bool guard(const std::function<bool()>& step);
   // Runs `undo` if the limit passes: for what is not a whole file yet (a
-  // video being encoded).
-  void on_expiry(std::function<void()> undo);
+  // video being encoded), which the message names as `what`.
+  void on_expiry(std::function<void()> undo, std::string what);
 
  private:
   void watch(double seconds);
@@ -40,6 +40,7 @@ class Deadline {
   bool done_ = false;
   std::vector<std::filesystem::path> written_;
   std::vector<std::function<void()>> undo_;
+  std::string undo_what_;
   std::thread thread_;
 };
 

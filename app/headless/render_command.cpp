@@ -54,6 +54,17 @@ int render_command(const RenderRequest& req) {
   const bool sequence = req.frames > 0;
   const bool video = is_video_path(req.out);
   const VideoSettings video_settings{req.size, req.fps, req.codec, req.crf};
+  if (req.frame_range) {
+    if (!sequence) return fail("--frame-range is a slice of a sequence: give --frames COUNT too", kExitUsage);
+    if (req.frame_range->y >= req.frames)
+      return fail("--frame-range " + std::to_string(req.frame_range->x) + ":" + std::to_string(req.frame_range->y) +
+                      ": the sequence has frames 0 to " + std::to_string(req.frames - 1),
+                  kExitUsage);
+    if (video)
+      return fail("--frame-range writes frames, not a video: give OUT a counter (frame_%04d.png) and join the "
+                  "slices with ffmpeg (docs/farm.md)",
+                  kExitUsage);
+  }
   if (video) {
     if (!sequence)
       return fail("'" + req.out.string() + "': a video needs --frames COUNT or --duration SECONDS", kExitUsage);
@@ -115,7 +126,13 @@ int render_command(const RenderRequest& req) {
   const auto values = uniform_values(uniforms, req.sets, &error);
   if (!values) return fail("--set " + error, kExitUsage);
 
-  const int count = sequence ? req.frames : 1;
+  if (req.frame_range && project.has_feedback())
+    return fail("--frame-range: this project feeds each frame into the next (a buffer reads itself or a later "
+                "pass), so its frames cannot be rendered apart; render it in one run",
+                kExitUsage);
+  // The frames this run draws, numbered as in the whole sequence.
+  const int first = req.frame_range ? req.frame_range->x : 0;
+  const int count = req.frame_range ? req.frame_range->y - first + 1 : sequence ? req.frames : 1;
   const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
   const auto date = req.date.value_or(std::chrono::system_clock::now());
   auto inputs_at = [&](int frame, double time, double since_first) {
@@ -147,9 +164,10 @@ int render_command(const RenderRequest& req) {
   if (video) {
     encoder = VideoEncoder::start(req.out, video_settings, &error);
     if (!encoder) return fail(error, kExitUsage);
-    deadline.on_expiry([&encoder] { encoder->abandon(); });
+    deadline.on_expiry([&encoder] { encoder->abandon(); }, "the video it was writing");
   }
-  for (int i = 0; i < count; ++i) {
+  for (int n = 0; n < count; ++n) {
+    const int i = first + n;
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
     Image image = graph.render_frame(project, in, req.size, req.samples);
     if (video) {
@@ -161,7 +179,7 @@ int render_command(const RenderRequest& req) {
       });
       if (!written) return fail(error, kExitUsage);
     }
-    if (sequence || warm_up) progress.show(total - count + i + 1);
+    if (sequence || warm_up) progress.show(total - count + n + 1);
   }
   if (video && !deadline.write(req.out, [&] { return encoder->finish(&error); })) return fail(error, kExitUsage);
   return kExitOk;

@@ -233,6 +233,16 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --samples 0", "--samples"},
       {"render " + g + " -o " + out + " --samples 5000", "--samples"},
       {"--refine -1", "--refine"},
+      {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 2:4", "--frame-range 2:4: the sequence has frames 0 to 3"},
+      {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 3:1", "--frame-range '3:1': FIRST comes after LAST"},
+      {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 1-2", "--frame-range '1-2': expected FIRST:LAST"},
+      {"render " + g + " -o " + out + " --frame-range 0:0", "--frame-range is a slice of a sequence: give --frames COUNT"},
+      {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 4 --frame-range 0:1", "--frame-range writes frames, not a video"},
+      {"render " + g + " -o " + (dir_ / "v.mp4").string(), "a video needs --frames COUNT or --duration SECONDS"},
+      {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 2 --size 161x90", "needs an even width and height"},
+      {"render " + g + " -o " + out + " --crf 20", "--codec and --crf are for a video (.mp4, .mov, .webm, .gif)"},
+      {"render " + g + " -o " + (dir_ / "v.gif").string() + " --frames 2 --crf 20", "--crf does not apply to .gif"},
+      {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 2 --duration 1", "--frames excludes --duration"},
   };
   for (const auto& [args, expected] : cases) {
     test::Outcome r = run(args);

@@ -174,7 +174,7 @@ class Video(unittest.TestCase):
         self.assertEqual(r.returncode, 124)
         self.assertLess(time.monotonic() - started, 10)
         self.assertEqual(r.stderr, "raymarching: error: the render ran past --timeout 1 s and was stopped; "
-                                   "what it wrote is removed\n")
+                                   "the video it was writing is removed\n")
         time.sleep(0.2)
         self.assertEqual(leftovers(self.dir), ["moving.frag"])
 
