@@ -27,6 +27,12 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--frame-range", frame_range_, "Render only frames FIRST to LAST of the --frames sequence, numbered "
                                             "as in the whole run, so that runs on several machines make it up")
       ->type_name("FIRST:LAST");
+  auto* motion = c.add_option("--motion-samples", motion_samples_, "Motion blur: average N times over the open "
+                                                                 "shutter in every frame")
+                     ->type_name("N")->check(CLI::Range(1, 256));
+  c.add_option("--shutter", shutter_, "Motion blur: the share of the frame interval the shutter is open, centred on "
+                                      "the frame's time (default 0.5, with --motion-samples)")
+      ->type_name("FRACTION")->check(finite_between(0.0, 1.0))->needs(motion);
   c.add_option("--codec", codec_, "A video's ffmpeg encoder (default: libx264 for .mp4 and .mov, libvpx-vp9 for .webm)")
       ->type_name("NAME");
   c.add_option("--crf", crf_, "A video's quality, lower is better (default: 18 for H.264, 32 for VP9)")
@@ -71,6 +77,11 @@ int RenderCommand::run() const {
   req.sets = sets_;
   req.timeout = timeout_;
   req.samples = samples_;
+  req.motion_samples = motion_samples_;
+  req.shutter = motion_samples_ > 1 ? (shutter_ >= 0 ? shutter_ : 0.5) : 0.0;
+  if (req.samples * req.motion_samples > kMaxSamples)
+    throw UsageError{"--samples " + std::to_string(req.samples) + " x --motion-samples " +
+                     std::to_string(req.motion_samples) + ": at most " + std::to_string(kMaxSamples) + " draws a pixel"};
   return render_command(req);
 }
 

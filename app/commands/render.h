@@ -25,6 +25,8 @@ class RenderCommand {
   std::string codec_;    // --codec
   std::string frame_range_;  // --frame-range FIRST:LAST
   int crf_ = -1;         // --crf; -1: the codec's default
+  double shutter_ = -1;  // --shutter; -1: 0.5 with --motion-samples, else none
+  int motion_samples_ = 1;
   double timeout_ = 0;
   SourceFlags source_;
   ChannelFlags channels_;

@@ -185,7 +185,8 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
   return std::nullopt;
 }
 
-Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& in, int samples) {
+Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& in, int samples,
+                        const MotionBlur& motion) {
   Metadata out{{"raymarching:scene", fs::absolute(scene).lexically_normal().string()}};
   std::string command = "raymarching render " + scene.string();
   for (const fs::path& dir : source.include_dirs) command += " -I " + dir.string();
@@ -209,6 +210,15 @@ Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, cons
   if (samples > 1) {
     command += " --samples " + std::to_string(samples);
     out.emplace_back("raymarching:samples", std::to_string(samples));
+  }
+  if (motion.steps > 1 && motion.shutter > 0) {
+    // The shutter is open for a share of the frame interval: the rate goes too.
+    char fps[32], shutter[32];
+    std::snprintf(fps, sizeof fps, "%.9g", motion.fps);
+    std::snprintf(shutter, sizeof shutter, "%.9g", motion.shutter);
+    command += std::string(" --fps ") + fps + " --shutter " + shutter + " --motion-samples " + std::to_string(motion.steps);
+    out.emplace_back("raymarching:shutter", shutter);
+    out.emplace_back("raymarching:motion_samples", std::to_string(motion.steps));
   }
   out.emplace_back("ImageDescription", std::move(command));
   return out;

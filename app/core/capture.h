@@ -43,10 +43,10 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
                                     Overwrite overwrite, std::string* error);
 
 // What a picture needs to be reproduced: scene, -I and -D (the accuracy knobs
-// and the preset among them), inputs, and the `render` command line that makes
-// it again (stored as ImageDescription).
+// and the preset among them), inputs, supersamples and motion blur, and the
+// `render` command line that makes it again (stored as ImageDescription).
 Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& inputs,
-                        int samples = 1);
+                        int samples = 1, const MotionBlur& motion = {});
 
 // Reads metadata attributes back (for tests and for reproducing a shot).
 Metadata read_metadata(const fs::path& path);

@@ -260,15 +260,17 @@ void FrameGraph::draw_image(const Project& project, const FrameInputs& in, glm::
   if (part) glDisable(GL_SCISSOR_TEST);
 }
 
-Image FrameGraph::render_image(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples) const {
+Image FrameGraph::render_image(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples,
+                               const MotionBlur& motion) const {
   return renderer_.render_image(*project.image_program(), in, inputs_of(project, project.passes().size() - 1), size,
-                                samples);
+                                samples, motion);
 }
 
-Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples) {
+Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples,
+                               const MotionBlur& motion) {
   draw_buffers(project, in, size);
   Image image;
-  timed(project, project.passes().size() - 1, [&] { image = render_image(project, in, size, samples); });  // with the read-back
+  timed(project, project.passes().size() - 1, [&] { image = render_image(project, in, size, samples, motion); });  // with the read-back
   return image;
 }
 

@@ -50,9 +50,13 @@ class FrameGraph {
   // The image pass alone, read back (in tiles past the driver's limit),
   // reading the buffers as they are: a screenshot must not advance them.
   // Each pixel is the mean of `samples` supersamples (core/supersampling.h).
-  Image render_image(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples = 1) const;
-  // draw() into an image: buffers once, then the image pass's samples.
-  Image render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples = 1);
+  // With `motion`, the samples also spread over the shutter's time.
+  Image render_image(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples = 1,
+                     const MotionBlur& motion = {}) const;
+  // draw() into an image: buffers once (at the frame's time), then the image
+  // pass's samples.
+  Image render_frame(const Project& project, const FrameInputs& in, glm::ivec2 size, int samples = 1,
+                     const MotionBlur& motion = {});
 
   // Per-pass timing, for the HUD and the benchmarks: GPU time from a
   // GL_TIME_ELAPSED query around each pass and, with `finish`, the wall

@@ -12,6 +12,7 @@
 #include "core/image.h"
 #include "core/host_inputs.h"
 #include "core/program.h"
+#include "core/supersampling.h"
 
 namespace rm {
 
@@ -68,11 +69,12 @@ class Renderer {
   void draw(const Program& program, const FrameInputs& inputs, const ChannelInputs& channels, glm::ivec2 size) const;
 
   // Renders offscreen at `size`, in tiles no larger than the driver allows,
-  // each the mean of `samples` supersamples (1: the pixel centres alone).
+  // each the mean of `samples` supersamples (1: the pixel centres alone),
+  // each of those at every step of `motion`'s shutter (iTime moved).
   // A tile moves gl_FragCoord by its origin; callers check that the shader
   // kind can be drawn in tiles first.
   Image render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,
-                     int samples = 1) const;
+                     int samples = 1, const MotionBlur& motion = {}) const;
   int max_tile() const { return max_tile_; }
   void limit_tile(int pixels) { max_tile_ = std::max(1, std::min(max_tile_, pixels)); }  // tests tiling
 

@@ -23,4 +23,10 @@ glm::vec2 sample_offset(int index) {
 
 float sample_weight(int index) { return 1.0f / static_cast<float>(index + 1); }
 
+double motion_offset(int index, const MotionBlur& motion) {
+  if (motion.steps <= 1 || motion.shutter <= 0) return 0.0;
+  const double step = (index % motion.steps + 0.5) / motion.steps - 0.5;
+  return motion.shutter / motion.fps * step;
+}
+
 }  // namespace rm

@@ -21,4 +21,19 @@ glm::vec2 sample_offset(int index);
 // and itself: 1 for sample 0 (it replaces what was there), 1/(k+1) for k.
 float sample_weight(int index);
 
+// Motion blur: a frame's samples spread over the time its shutter is open,
+// `shutter` of the frame interval centred on the frame's time, in `steps`
+// even steps. Each spatial sample is taken at every step, so a picture of N
+// supersamples takes N x steps draws of its image pass.
+struct MotionBlur {
+  double shutter = 0;  // 0 to 1 of the frame interval; 0: none
+  int steps = 1;       // render --motion-samples
+  double fps = 60;     // the frame interval is 1 / fps
+  int draws(int samples) const { return samples * steps; }
+};
+
+// How far sample `index` lies from the frame's time, in seconds: steps at
+// the middles of `steps` equal parts of the open shutter, in turn.
+double motion_offset(int index, const MotionBlur& motion);
+
 }  // namespace rm

@@ -132,6 +132,7 @@ int render_command(const RenderRequest& req) {
                 kExitUsage);
   // The frames this run draws, numbered as in the whole sequence.
   const int first = req.frame_range ? req.frame_range->x : 0;
+  const MotionBlur motion{req.shutter, req.motion_samples, req.fps};
   const int count = req.frame_range ? req.frame_range->y - first + 1 : sequence ? req.frames : 1;
   const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
   const auto date = req.date.value_or(std::chrono::system_clock::now());
@@ -169,13 +170,14 @@ int render_command(const RenderRequest& req) {
   for (int n = 0; n < count; ++n) {
     const int i = first + n;
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
-    Image image = graph.render_frame(project, in, req.size, req.samples);
+    Image image = graph.render_frame(project, in, req.size, req.samples, motion);
     if (video) {
       if (!deadline.guard([&] { return encoder->add(image, &error); })) return fail(error, kExitUsage);
     } else {
       const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
       const bool written = deadline.write(out, [&] {
-        return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples), Overwrite::Replace, &error).has_value();
+        return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples, motion), Overwrite::Replace,
+                           &error).has_value();
       });
       if (!written) return fail(error, kExitUsage);
     }

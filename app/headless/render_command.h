@@ -33,6 +33,8 @@ struct RenderRequest {
   std::vector<std::string> sets;  // --set NAME=VALUE: the shader's own uniforms
   double timeout = 0;  // seconds; 0: none (see headless/deadline)
   int samples = 1;     // supersamples per pixel (core/supersampling.h)
+  double shutter = 0;     // motion blur: the share of the frame interval the shutter is open
+  int motion_samples = 1; // motion blur: steps over the open shutter
   std::string codec;        // a video's ffmpeg encoder; empty: the container's default
   std::optional<int> crf;   // a video's quality; empty: the codec's default
 

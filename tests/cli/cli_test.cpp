@@ -270,6 +270,42 @@ std::vector<std::string> names_in(const std::filesystem::path& dir) {
   return names;
 }
 
+// render --motion-samples N [--shutter F]: each frame is the mean of N times
+// spread evenly over the open shutter, centred on the frame's time; iFrame
+// stays the frame's. A step at t = 0.21 seen by frame 2 at 10 fps (t = 0.2):
+// shut, no time past it; open for half the interval (0.175 to 0.225), one of
+// 4 steps; open for the whole (0.15 to 0.25), two of 4. The metadata's
+// command renders the same frame again.
+TEST_F(Cli, RenderMotionBlurAveragesTimesOverTheOpenShutter) {
+  write_file(dir_ / "step.frag", "void mainImage(out vec4 c, in vec2 f) {\n"
+                                 "  c = vec4(iTime > 0.21 ? 1.0 : 0.0, float(iFrame) / 10.0, 0.0, 1.0);\n}\n");
+  auto red = [&](const std::string& blur) {
+    const auto out = dir_ / "step.exr";
+    const test::Outcome r = run("render " + (dir_ / "step.frag").string() + " -o " + out.string() +
+                                " --size 8x4 --time 0.2 --fps 10 " + blur);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const std::vector<float> px = test::read_pixels(out);
+    EXPECT_EQ(px.size(), 8u * 4u * 4u);
+    for (size_t i = 0; i < px.size(); i += 4) EXPECT_FLOAT_EQ(px[i + 1], 0.2f) << "iFrame moved with the shutter";
+    return px.empty() ? -1.0f : px[0];
+  };
+  EXPECT_EQ(red(""), 0.0f);
+  EXPECT_FLOAT_EQ(red("--motion-samples 4"), 0.25f);
+  EXPECT_FLOAT_EQ(red("--motion-samples 4 --shutter 0.5"), 0.25f);
+  EXPECT_FLOAT_EQ(red("--motion-samples 4 --shutter 1"), 0.5f);
+  EXPECT_FLOAT_EQ(red("--motion-samples 4 --shutter 0"), 0.0f);
+
+  const auto png = dir_ / "blurred.png";
+  ASSERT_EQ(run("render " + (dir_ / "step.frag").string() + " -o " + png.string() +
+                " --size 8x4 --time 0.2 --fps 10 --motion-samples 4 --shutter 1").status, 0);
+  const std::string command = OIIO::ImageInput::open(png.string())->spec().get_string_attribute("ImageDescription");
+  EXPECT_NE(command.find(" --fps 10 --shutter 1 --motion-samples 4"), std::string::npos) << command;
+
+  const test::Outcome lone = run("render " + (dir_ / "step.frag").string() + " -o " + png.string() + " --shutter 0.5");
+  EXPECT_EQ(lone.status, 2);
+  EXPECT_NE(lone.err.find("--shutter requires --motion-samples"), std::string::npos) << lone.err;
+}
+
 // render --timeout: a render that runs too long ends at the limit with exit
 // status 124, one line, and no file left (no output, no temporary); the
 // frames a sequence had written are removed. One that fits is untouched.
