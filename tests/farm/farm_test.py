@@ -45,6 +45,9 @@ class Farm(unittest.TestCase):
         # Three jobs, each over a third, and all three running at one moment.
         jobs = [line.split("\t") for line in joblog.read_text().splitlines()[1:]]
         self.assertEqual(sorted(j[-1].split()[-1] for j in jobs), ["'0:7'", "'16:23'", "'8:15'"])
+        # One iDate for all: without --date each run would read its own clock.
+        dates = {j[-1].split("--date ")[1].split()[0] for j in jobs}
+        self.assertEqual(len(dates), 1, jobs)
         starts = [float(j[2]) for j in jobs]
         ends = [float(j[2]) + float(j[3]) for j in jobs]
         self.assertLess(max(starts), min(ends), "the slices did not run at the same time")
