@@ -2,12 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/supersampling.h"
 #include "core/views.h"
 #include "headless/render_command.h"
 
 namespace rm::cli {
+
+namespace {
+constexpr int kMaxFrames = 1000000;  // --frames, and --duration x --fps
+}  // namespace
 
 RenderCommand::RenderCommand(CLI::App& app)
     : command_(app.add_subcommand("render", "Render SCENE headless through EGL (no display, no GPU needed)")) {
@@ -21,7 +26,7 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--time", time_, "iTime of the (first) frame in seconds")->type_name("T");
   c.add_option("--frame", frame_, "iFrame of the (first) frame (default: time * fps)")->type_name("N")->check(CLI::NonNegativeNumber);
   auto* frames = c.add_option("--frames", frames_, "Render COUNT frames; OUT is a video, or needs a counter like "
-                                                   "frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, 1000000));
+                                                   "frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, kMaxFrames));
   c.add_option("--duration", duration_, "Render SECONDS of frames at --fps (instead of --frames)")
       ->type_name("SECONDS")->check(finite_between(0.001, 1e6))->excludes(frames);
   c.add_option("--frame-range", frame_range_, "Render only frames FIRST to LAST of the --frames sequence, numbered "
@@ -65,7 +70,17 @@ int RenderCommand::run() const {
   if (frame_ >= 0) req.frame = frame_;
   req.frames = frames_;
   req.fps = fps_;
-  if (duration_ > 0) req.frames = std::max(1, static_cast<int>(std::lround(duration_ * fps_)));
+  if (duration_ > 0) {
+    // The bound of --frames: a long duration at a high rate is more frames than an int holds.
+    const double frames = std::max(1.0, std::round(duration_ * fps_));
+    if (frames > kMaxFrames) {
+      char message[160];
+      std::snprintf(message, sizeof message, "--duration %g at --fps %g is %.0f frames; at most %d", duration_, fps_,
+                    frames, kMaxFrames);
+      throw UsageError{message};
+    }
+    req.frames = static_cast<int>(frames);
+  }
   req.codec = codec_;
   if (!frame_range_.empty()) req.frame_range = parse_frame_range(frame_range_, "--frame-range");
   if (crf_ >= 0) req.crf = crf_;

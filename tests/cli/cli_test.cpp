@@ -243,6 +243,7 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --crf 20", "--codec and --crf are for a video (.mp4, .mov, .webm, .gif)"},
       {"render " + g + " -o " + (dir_ / "v.gif").string() + " --frames 2 --crf 20", "--crf does not apply to .gif"},
       {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 2 --duration 1", "--frames excludes --duration"},
+      {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --duration 1e6 --fps 1e5", "--duration 1e+06 at --fps 100000 is 100000000000 frames; at most 1000000"},
   };
   for (const auto& [args, expected] : cases) {
     test::Outcome r = run(args);
