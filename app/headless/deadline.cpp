@@ -24,10 +24,11 @@ Deadline::~Deadline() {
 }
 
 bool Deadline::write(const std::filesystem::path& path, const std::function<bool()>& write) {
-  std::lock_guard lock(mutex_);
-  const bool ok = write();
-  if (ok) written_.push_back(path);
-  return ok;
+  return guard([&] {
+    if (!write()) return false;
+    written_.push_back(path);
+    return true;
+  });
 }
 
 bool Deadline::guard(const std::function<bool()>& step) {

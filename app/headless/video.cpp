@@ -154,11 +154,7 @@ bool VideoEncoder::add(const Image& frame, std::string* error) {
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       // ffmpeg closed its input: it failed or was stopped. Its status says which.
-      close(input_);
-      input_ = -1;
-      int status = 0;
-      waitpid(pid_, &status, 0);
-      pid_ = -1;
+      const int status = end_input_and_wait();
       const std::string said = ffmpeg_said();
       *error = "ffmpeg stopped while writing '" + path_.string() + "'" +
                (WIFSIGNALED(status) ? std::string(" (killed by signal ") + std::to_string(WTERMSIG(status)) + ")"
@@ -171,13 +167,18 @@ bool VideoEncoder::add(const Image& frame, std::string* error) {
   return true;
 }
 
-bool VideoEncoder::finish(std::string* error) {
+int VideoEncoder::end_input_and_wait() {
   close(input_);
   input_ = -1;
   int status = 0;
   while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
   }
   pid_ = -1;
+  return status;
+}
+
+bool VideoEncoder::finish(std::string* error) {
+  const int status = end_input_and_wait();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string said = ffmpeg_said();
     *error = "ffmpeg could not write '" + path_.string() + "'" + (said.empty() ? "" : ": " + said);

@@ -58,6 +58,7 @@ class VideoEncoder {
  private:
   VideoEncoder(std::filesystem::path path, std::filesystem::path temp, pid_t pid, int input, int log);
   std::string ffmpeg_said() const;  // the last line ffmpeg wrote to stderr
+  int end_input_and_wait();         // closes ffmpeg's input and returns its wait status
 
   std::filesystem::path path_, temp_;
   pid_t pid_;
