@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/knobs.h"
 #include "core/supersampling.h"
+#include "core/take.h"
 #include "core/views.h"
 #include "headless/render_command.h"
+#include "headless/video.h"
 
 namespace rm::cli {
 
@@ -17,7 +20,9 @@ constexpr int kMaxFrames = 1000000;  // --frames, and --duration x --fps
 RenderCommand::RenderCommand(CLI::App& app)
     : command_(app.add_subcommand("render", "Render SCENE headless through EGL (no display, no GPU needed)")) {
   CLI::App& c = *command_;
-  c.add_option("scene", scene_, "Shader or Shadertoy .json to render")->required()->type_name("SCENE");
+  c.add_option("scene", scene_, "Shader or Shadertoy .json to render (or --take)")->type_name("SCENE");
+  c.add_option("--take", take_, "Render a take recorded in the window (F9): its scene, -I/-D and every frame's "
+                                "inputs, as recorded or resampled at --fps")->type_name("TAKE");
   c.add_option("--media", media_, "Where a .json's shadertoy.com media are, by file name")->type_name("DIR");
   c.add_option("-o,--output", out_, "Output image: .png (8-bit, clamped) or .exr (raw float); or a video through "
                                     "ffmpeg: .mp4 or .mov (H.264), .webm (VP9), .gif")->required()->type_name("OUT");
@@ -58,18 +63,56 @@ RenderCommand::RenderCommand(CLI::App& app)
   channels_.add_to(c);
 }
 
+// `render --take`: the scene, its -I/-D (the command line's after the
+// take's), the size and the frames come from the take.
+void RenderCommand::take_into(RenderRequest& req) const {
+  if (!scene_.empty()) throw UsageError{"--take names its own scene: give SCENE or --take, not both"};
+  for (const char* option : {"--time", "--frame", "--frames", "--duration", "--mouse", "--set", "--date"})
+    if (command_->count(option) > 0)
+      throw UsageError{std::string(option) + ": a take gives every frame's inputs; leave it out with --take"};
+  require_readable_file(take_);
+  std::string error;
+  std::optional<Take> take = read_take(take_, &error);
+  if (!take) throw UsageError{error};
+  req.scene = take->scene;
+  if (media_.empty()) req.media = take->media;
+  SourceOptions from_command_line = req.source;
+  req.source.include_dirs = take->include_dirs;
+  req.source.include_dirs.insert(req.source.include_dirs.end(), from_command_line.include_dirs.begin(),
+                                 from_command_line.include_dirs.end());
+  req.source.defines = take->defines_at(0);
+  for (const Define& d : from_command_line.defines)
+    req.source.defines = with_define(req.source.defines, d.name, d.value.empty() ? "1" : d.value);
+  if (command_->count("--size") == 0) req.size = take->frames.front().size;
+  // Without --fps, the take's own frames; a video of them plays at their mean rate.
+  req.take_fps = command_->count("--fps") > 0 ? fps_ : 0.0;
+  const double span = take->duration();
+  req.fps = req.take_fps > 0 ? req.take_fps : span > 0 ? (take->frames.size() - 1) / span : 60.0;
+  req.frames = TakeReplay(*take, req.take_fps).frames();
+  if (!is_video_path(req.out) && !sequence_path(req.out, 0))
+    throw UsageError{"'" + req.out.string() + "': a take is a sequence of " + std::to_string(req.frames) +
+                     " frames: give OUT a counter such as %04d, or a video (" + video_extensions() + ")"};
+  if (!take->date.empty()) req.date = parse_date(take->date);
+  req.take = std::move(take);
+}
+
 int RenderCommand::run() const {
-  require_readable_file(scene_);
-  check_project_file(scene_, media_);
+  if (scene_.empty() && take_.empty()) throw UsageError{"render needs SCENE, or --take TAKE"};
   RenderRequest req;
   req.scene = scene_;
   req.source = source_.source();
   req.out = out_;
   req.size = parse_size(size_, "--size");
+  req.media = media_;
+  if (!take_.empty()) take_into(req);
+  require_readable_file(req.scene);
+  check_project_file(req.scene, req.media);
   req.time = parse_number(time_, "--time");
   if (frame_ >= 0) req.frame = frame_;
-  req.frames = frames_;
-  req.fps = fps_;
+  if (!req.take) {
+    req.frames = frames_;
+    req.fps = fps_;
+  }
   if (duration_ > 0) {
     // The bound of --frames: a long duration at a high rate is more frames than an int holds.
     const double frames = std::max(1.0, std::round(duration_ * fps_));
@@ -88,7 +131,6 @@ int RenderCommand::run() const {
   if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);
   if (!date_.empty()) req.date = parse_date(date_);
   req.channels = channels_.get();
-  req.media = media_;
   req.sets = sets_;
   req.timeout = timeout_;
   req.samples = samples_;

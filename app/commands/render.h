@@ -7,6 +7,10 @@
 
 #include "commands/cli_options.h"
 
+namespace rm {
+struct RenderRequest;
+}  // namespace rm
+
 namespace rm::cli {
 
 class RenderCommand {
@@ -16,6 +20,8 @@ class RenderCommand {
   int run() const;
 
  private:
+  void take_into(RenderRequest& req) const;
+
   CLI::App* command_;
   std::string scene_, out_, size_ = "640x360", time_ = "0", mouse_, date_, view_;
   std::vector<std::string> sets_;  // --set NAME=VALUE
@@ -31,6 +37,7 @@ class RenderCommand {
   SourceFlags source_;
   ChannelFlags channels_;
   std::string media_;
+  std::string take_;  // --take
 };
 
 }  // namespace rm::cli

@@ -45,7 +45,7 @@ bool rename_no_replace(const fs::path& from, const fs::path& to, int* err) {
 }
 
 // Writes `bytes` to a new file and flushes it to the disk; 0 or an errno.
-int write_durably(const fs::path& path, const std::vector<unsigned char>& bytes) {
+int write_durably(const fs::path& path, std::string_view bytes) {
   const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) return errno;
   size_t done = 0;
@@ -155,8 +155,14 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
     if (error->back() == ' ') error->pop_back();
     return std::nullopt;
   }
+  return write_whole_file(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()),
+                          overwrite, error);
+}
+
+std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view bytes, Overwrite overwrite,
+                                         std::string* error) {
   const fs::path temp = temporary_sibling(path);
-  if (int err = write_durably(temp, encoded); err != 0) {
+  if (int err = write_durably(temp, bytes); err != 0) {
     *error = "cannot write '" + path.string() + "': " + std::strerror(err);
     std::error_code ec;
     fs::remove(temp, ec);

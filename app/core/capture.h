@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
-#include <utility>
+#include <string_view>
 #include <vector>
 
 #include "core/renderer.h"
@@ -41,6 +41,11 @@ std::string writable_image_extensions();
 // written, or nullopt with *error set; on failure no file is left behind.
 std::optional<fs::path> write_image(const fs::path& path, const Image& image, const Metadata& metadata,
                                     Overwrite overwrite, std::string* error);
+
+// Writes `bytes` to `path` the way write_image writes a picture: whole or
+// not at all, under a hidden name first (same return and error).
+std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view bytes, Overwrite overwrite,
+                                         std::string* error);
 
 // What a picture needs to be reproduced: scene, -I and -D (the accuracy knobs
 // and the preset among them), inputs, supersamples and motion blur, and the

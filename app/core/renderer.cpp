@@ -119,14 +119,16 @@ void Renderer::add_sample(int index, glm::ivec2 size) const {
 Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,
                              int samples, const MotionBlur& motion) const {
   // Every sample of a tile into its target, the later ones into the mean.
-  const float time = inputs.time;
   const int draws = motion.draws(samples);
   auto draw_samples = [&](const RenderTarget& target, glm::ivec2 part) {
     for (int s = 0; s < draws; ++s) {
-      inputs.sample = s;
-      inputs.time = static_cast<float>(time + motion_offset(s, motion));
+      FrameInputs moved = inputs;
+      moved.sample = s;
+      const double offset = motion_offset(s, motion);
+      if (offset != 0 && motion.move) motion.move(moved, offset);
+      else moved.time = static_cast<float>(inputs.time + offset);
       target.bind();
-      draw(program, inputs, channels, part);
+      draw(program, moved, channels, part);
       if (draws > 1) glFinish();  // bound the work queued on software renderers
     }
   };

@@ -3,7 +3,11 @@
 // window refines a picture at rest this way (--refine), and `render
 // --samples` draws the same sequence, so that the two give the same still.
 #pragma once
+#include <functional>
+
 #include <glm/glm.hpp>
+
+#include "core/inputs.h"
 
 namespace rm {
 
@@ -29,6 +33,9 @@ struct MotionBlur {
   double shutter = 0;  // 0 to 1 of the frame interval; 0: none
   int steps = 1;       // render --motion-samples
   double fps = 60;     // the frame interval is 1 / fps
+  // Moves a frame's inputs `seconds` along the time line; empty: iTime
+  // alone moves. A take (core/take.h) moves the mouse and uniforms too.
+  std::function<void(FrameInputs& in, double seconds)> move;
   int draws(int samples) const { return samples * steps; }
 };
 

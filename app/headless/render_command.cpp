@@ -1,5 +1,6 @@
 #include "headless/render_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -28,6 +29,17 @@ int fail(const std::string& message, int code) {
 }
 
 void print_diagnostics(const Diagnostics& diags) { std::cerr << join(diags); }
+
+// The shader's uniforms as a take recorded them, by name; those the take
+// does not have (declared since) keep `defaults`, and values the shader no
+// longer declares, or of another size, are dropped.
+std::vector<UniformValue> with_take_values(std::vector<UniformValue> defaults, const std::vector<UniformValue>& take) {
+  for (UniformValue& v : defaults) {
+    auto it = std::find_if(take.begin(), take.end(), [&](const UniformValue& t) { return t.name == v.name; });
+    if (it != take.end() && it->value.size() == v.value.size()) v = *it;
+  }
+  return defaults;
+}
 
 }  // namespace
 
@@ -125,6 +137,9 @@ int render_command(const RenderRequest& req) {
   print_diagnostics(uniforms.warnings);
   const auto values = uniform_values(uniforms, req.sets, &error);
   if (!values) return fail("--set " + error, kExitUsage);
+  if (req.take)
+    if (auto changes = take_source_changes(*req.take, pass_hashes(project)))
+      std::cerr << "raymarching: warning: take: " << *changes << '\n';
 
   if (req.frame_range && project.has_feedback())
     return fail("--frame-range: this project feeds each frame into the next (a buffer reads itself or a later "
@@ -132,11 +147,62 @@ int render_command(const RenderRequest& req) {
                 kExitUsage);
   // The frames this run draws, numbered as in the whole sequence.
   const int first = req.frame_range ? req.frame_range->x : 0;
-  const MotionBlur motion{req.shutter, req.motion_samples, req.fps};
+  MotionBlur motion{req.shutter, req.motion_samples, req.fps, {}};
   const int count = req.frame_range ? req.frame_range->y - first + 1 : sequence ? req.frames : 1;
-  const int first_frame = req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
+  const int first_frame =
+      req.take ? 0 : req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
   const auto date = req.date.value_or(std::chrono::system_clock::now());
+  // A take's frame `n`: its inputs where the replay is in the take, and what
+  // happened since the frame before (a click, keys, a knob) once.
+  std::optional<TakeReplay> replay;
+  if (req.take) replay.emplace(*req.take, req.take_fps);
+  // A knob set in the panel while the take recorded: the program it made, from that frame on.
+  auto take_knobs = [&](int n) {
+    const auto [first_crossed, end_crossed] = replay->crossed(n);
+    for (const TakeEvent& e : req.take->events) {
+      if (e.frame <= 0 || e.frame < first_crossed || e.frame >= end_crossed) continue;
+      SourceOptions now = req.source;
+      now.defines = e.defines;
+      project.set_options(now, with_view(now, req.view));
+      if (project.reload() == ReloadStatus::Failed) {
+        print_diagnostics(project.diagnostics());
+        error = "take: the program of frame " + std::to_string(e.frame) + " (its knobs set) does not build";
+        return false;
+      }
+      if (!graph.update(project, &error)) return false;
+    }
+    return true;
+  };
+  auto take_frame_inputs = [&](int n, double) {
+    const Take& take = *req.take;
+    FrameInputs in = take_inputs_at(take, replay->wall(n), req.size, uniforms);
+    in.uniforms = with_take_values(*values, in.uniforms);
+    in.frame = req.take_fps > 0 ? take.frames.front().frame + n : in.frame;
+    in.time_delta = static_cast<float>(1.0 / req.fps);
+    in.frame_rate = static_cast<float>(req.fps);
+    in.date = date_of(date + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                 std::chrono::duration<double>(replay->wall(n))));
+    const auto [first_crossed, end_crossed] = replay->crossed(n);
+    for (int j = first_crossed; j < end_crossed; ++j) {
+      const TakeFrame& f = take.frames[static_cast<size_t>(j)];
+      const glm::vec2 scale = glm::vec2(req.size) / glm::vec2(f.size);
+      if (f.mouse.w > 0) in.mouse = f.mouse * glm::vec4(scale, scale);  // the press, in the frame it happened
+      for (const KeyEvent& k : f.keys) k.down ? graph.keyboard().press(k.code) : graph.keyboard().release(k.code);
+    }
+    return in;
+  };
+  // Motion blur in a take: the mouse and the uniforms move over the shutter as iTime does.
+  double frame_wall = 0;  // where the frame being drawn is in the take
+  if (replay)
+    motion.move = [&](FrameInputs& in, double seconds) {
+      const FrameInputs moved = take_inputs_at(*req.take, frame_wall + seconds, req.size, uniforms);
+      in.time = moved.time;
+      in.mouse = glm::vec4(glm::vec2(moved.mouse), in.mouse.z, in.mouse.w);
+      in.cursor = moved.cursor;
+      in.uniforms = with_take_values(*values, moved.uniforms);
+    };
   auto inputs_at = [&](int frame, double time, double since_first) {
+    if (replay) return take_frame_inputs(frame, since_first);
     FrameInputs in;
     in.resolution = glm::vec3(req.size, 1.0f);
     in.time = static_cast<float>(time);
@@ -167,10 +233,19 @@ int render_command(const RenderRequest& req) {
     if (!encoder) return fail(error, kExitUsage);
     deadline.on_expiry([&encoder] { encoder->abandon(); }, "the video it was writing");
   }
+  // A slice of a take: the keys and knobs of the frames before it, without drawing them.
+  for (int i = 0; replay && i < first; ++i) {
+    if (!take_knobs(i)) return fail(error, kExitShaderError);
+    take_frame_inputs(i, 0);
+    graph.keyboard().end_frame();
+  }
   for (int n = 0; n < count; ++n) {
     const int i = first + n;
+    if (replay && !take_knobs(i)) return fail(error, kExitShaderError);
+    if (replay) frame_wall = replay->wall(i);
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
     Image image = graph.render_frame(project, in, req.size, req.samples, motion);
+    graph.keyboard().end_frame();
     if (video) {
       if (!deadline.guard([&] { return encoder->add(image, &error); })) return fail(error, kExitUsage);
     } else {

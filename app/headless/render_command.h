@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/source.h"
+#include "core/take.h"
 #include "core/views.h"
 
 namespace rm {
@@ -37,7 +38,12 @@ struct RenderRequest {
   int motion_samples = 1; // motion blur: steps over the open shutter
   std::string codec;        // a video's ffmpeg encoder; empty: the container's default
   std::optional<int> crf;   // a video's quality; empty: the codec's default
-
+  // render --take: the frames' inputs come from a take (core/take.h), whose
+  // scene and -I/-D are `scene` and `source` already; `frames` is the
+  // replay's count and `fps` its rate. take_fps 0: the take's own frames,
+  // as recorded; else its timeline resampled at take_fps.
+  std::optional<Take> take;
+  double take_fps = 0;
 };
 
 int render_command(const RenderRequest& request);

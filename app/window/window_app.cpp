@@ -30,6 +30,7 @@
 #include "window/kept_picture.h"
 #include "window/key_codes.h"
 #include "window/panels.h"
+#include "window/take_recorder.h"
 #include "window/ui.h"
 
 namespace rm {
@@ -40,6 +41,7 @@ const char* window_keys_help() {
          "  Space        pause / resume time\n"
          "  R            restart time and frame counter\n"
          "  Left/Right   step time by 1/60 s (while paused)\n"
+         "  F9           start / stop recording a take (render it with: raymarching render --take)\n"
          "  F11          toggle fullscreen\n"
          "  V            cycle views: picture, steps, normals, depth, nan\n"
          "  F2           hide / show the interface (errors, HUD, controls)\n"
@@ -126,6 +128,7 @@ class WindowApp {
     // process's exit (llvmpipe's threads, LLVM) come after it.
     glfwHideWindow(window_);
     if (options_.verbose) std::cerr << "raymarching: window hidden at " << steady_ns() << '\n';
+    if (take_.recording()) finish_take();  // quitting ends a take as F9 does
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
   }
@@ -236,6 +239,7 @@ class WindowApp {
     if (project_.ready()) use_ = project_.inputs_read();
     model_.has_picture = project_.ready();
     if (status == ReloadStatus::Swapped) {
+      take_.reloaded(source_, project_);
       take_user_uniforms();
       take_knobs();
       // A new program: the picture in progress is the old one's, and what
@@ -410,6 +414,7 @@ class WindowApp {
   void start_picture(int width, int height, bool advance, int sample = 0) {
     if (advance) take_inputs(width, height);
     if (!project_.ready() || too_slow_) return;  // the grey, or the picture as it is
+    if (advance) take_.frame(inputs_);
 
     const bool moving = advance && ((use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f);
     const bool budget_on = budget_.budget_ms() > 0;
@@ -624,6 +629,7 @@ class WindowApp {
     if (samples_ > 1) title += ", " + std::to_string(samples_) + "/" + std::to_string(options_.refine) + " samples";
     if (view_ != View::Picture) title += std::string(" (view: ") + to_string(view_) + ")";
     if (clock_.paused()) title += " (paused)";
+    if (take_.recording()) title += " (recording a take: " + std::to_string(take_.frames()) + " frames)";
     if (project_.ready() && !use_.time) title += " (static: drawn on change)";
     glfwSetWindowTitle(window_, title.c_str());
   }
@@ -651,12 +657,43 @@ class WindowApp {
     Image image = refined ? picture_.read() : graph_.render_image(project_, in, size);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const std::string name = options_.scene.stem().string() + "-" + timestamp_now() + "." + options_.shot_format;
+    Metadata metadata = frame_metadata(options_.scene, source_, in, samples);
+    // Which frame of the take being recorded this is: `render --take` draws it again.
+    if (take_.recording()) metadata.emplace_back("raymarching:take_frame", std::to_string(take_.current_frame()));
     std::string error;
-    auto written =
-        write_image(options_.shot_dir / name, image, frame_metadata(options_.scene, source_, in, samples), Overwrite::Never,
-                    &error);
+    auto written = write_image(options_.shot_dir / name, image, metadata, Overwrite::Never, &error);
     if (written) std::cout << "screenshot: " << written->string() << std::endl;
     else std::cerr << "raymarching: error: screenshot: " << error << '\n';
+  }
+
+  // F9: a take starts recording the inputs of every frame from the next one
+  // on; F9 again writes it beside the scene. A project whose frames feed the
+  // next starts over (as R does), so that its replay, which starts from
+  // empty buffers, shows the same frames.
+  void toggle_take() {
+    if (take_.recording()) {
+      finish_take();
+      return;
+    }
+    if (!project_.ready()) {
+      std::cerr << "raymarching: error: take: nothing to record: the scene has not compiled yet\n";
+      return;
+    }
+    if (project_.has_feedback()) restart();
+    take_.start(options_.scene, options_.media, source_, project_);
+    dirty_ = true;  // the next frame is the take's first, even in a static scene
+    std::cout << "take: recording" << std::endl;
+    update_title(true);
+  }
+
+  void finish_take() {
+    const int frames = take_.frames();
+    std::string error;
+    if (auto written = take_.stop(&error))
+      std::cout << "take: " << written->string() << " (" << frames << " frames)" << std::endl;
+    else
+      std::cerr << "raymarching: error: take: " << error << '\n';
+    update_title(true);
   }
 
   // V: picture, steps, normals, depth, nan, picture; views this scene cannot
@@ -720,6 +757,7 @@ class WindowApp {
   std::set<std::string> touched_uniforms_;  // set in the panel: they keep their values across reloads
   std::vector<std::chrono::steady_clock::time_point> presents_;  // of the last second, for fps
   MouseState mouse_;
+  TakeRecorder take_;  // F9
   std::pair<double, double> cursor_;  // window coordinates, from the last cursor event
   ShaderClock clock_;
   FrameInputs inputs_;
@@ -767,8 +805,12 @@ void WindowApp::on_key(int key, int scancode, int action, int mods) {
   const bool host_key = (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F25) || key == GLFW_KEY_ESCAPE;
   if (project_.reads_keyboard()) {
     const int code = browser_key_code(key);
-    if (code >= 0 && action == GLFW_PRESS) graph_.keyboard().press(code);
-    if (code >= 0 && action == GLFW_RELEASE) graph_.keyboard().release(code);
+    if (code >= 0 && (action == GLFW_PRESS || action == GLFW_RELEASE)) {
+      const bool down = action == GLFW_PRESS;
+      if (down) graph_.keyboard().press(code);
+      else graph_.keyboard().release(code);
+      take_.key(code, down);
+    }
     dirty_ = true;
     if (!host_key) return;
   }
@@ -780,6 +822,7 @@ void WindowApp::on_key(int key, int scancode, int action, int mods) {
     case GLFW_KEY_R: if (press) restart(); break;
     case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); dirty_ = true; break;
     case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); dirty_ = true; break;
+    case GLFW_KEY_F9: if (press) toggle_take(); break;
     case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;
     case GLFW_KEY_V: if (press) cycle_view(); break;
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: if (press) quit_ = true; break;

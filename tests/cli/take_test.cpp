@@ -1,0 +1,129 @@
+// `render --take` as a user runs it: a take written by hand (as the window
+// writes one, core/take.h) replayed frame by frame, as recorded and at
+// another rate, and the one-line errors of a take used wrong.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+// Each channel says one input: R the fraction of iTime, G iMouse.x across the
+// picture, B a uniform, A iFrame / 100.
+const char* kScene =
+    "uniform float gain;  // ui: min=0 max=1 default=0.5\n"
+    "void mainImage(out vec4 c, in vec2 f) {\n"
+    "  c = vec4(fract(iTime), iMouse.x / iResolution.x, gain, float(iFrame) / 100.0);\n"
+    "}\n";
+
+// Three frames of a 4x2 window: a drag from x=1 to x=3, released in the
+// last frame, and the uniform set in the panel from 0.25 to 0.75 then.
+const char* kTake = R"({
+ "raymarching_take": 1,
+ "scene": "scene.frag",
+ "include_dirs": [],
+ "date": "2026-11-24T04:00:00.000",
+ "events": [{"frame": 0, "defines": [], "hashes": {}}],
+ "frames": [
+{"w":0,"t":1.25,"f":10,"r":[4,2],"m":[1,1,1,1],"c":[1,1],"u":{"gain":"0.25"}},
+{"w":0.1,"t":1.5,"f":11,"m":[3,1,1,-1],"c":[3,1]},
+{"w":0.2,"t":1.75,"f":12,"m":[3,1,-1,-1],"u":{"gain":"0.75"}}
+ ]
+})";
+
+class Take : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_file(dir_ / "scene.frag", kScene);
+    write_file(dir_ / "t.take.json", kTake);
+  }
+  test::Outcome render(const std::string& args) {
+    return test::run_binary("render --take " + (dir_ / "t.take.json").string() + " " + args);
+  }
+  // Pixel (0, 0) of frame `n`'s EXR.
+  std::vector<float> pixel(const std::string& pattern, int n) {
+    char name[64];
+    std::snprintf(name, sizeof name, pattern.c_str(), n);
+    const std::vector<float> px = test::read_pixels(dir_ / name);
+    return px.size() >= 4 ? std::vector<float>(px.begin(), px.begin() + 4) : std::vector<float>{};
+  }
+  static void expect_pixel(const std::vector<float>& got, const std::vector<float>& want) {
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-6) << "channel " << i;
+  }
+  TempDir dir_;
+};
+
+TEST_F(Take, DrawsEveryRecordedFrameWithItsInputs) {
+  const test::Outcome r = render("-o " + (dir_ / "a_%d.exr").string() + " --size 8x4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The mouse's pixels scale from the 4x2 window to the 8x4 picture.
+  expect_pixel(pixel("a_%d.exr", 0), {0.25f, 0.25f, 0.25f, 0.10f});
+  expect_pixel(pixel("a_%d.exr", 1), {0.5f, 0.75f, 0.25f, 0.11f});
+  expect_pixel(pixel("a_%d.exr", 2), {0.75f, 0.75f, 0.75f, 0.12f});
+  EXPECT_TRUE(pixel("a_%d.exr", 3).empty()) << "one frame per recorded frame";
+}
+
+TEST_F(Take, AtAnotherRateInterpolatesBetweenTheRecordedFrames) {
+  const test::Outcome r = render("-o " + (dir_ / "b_%d.exr").string() + " --size 8x4 --fps 20");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // 0.2 s at 20 fps: frames at 0, 0.05, ..., 0.2, counted on from the take's first iFrame.
+  // Halfway through the drag: iTime and x halfway (2 of 4), the uniform as it was.
+  expect_pixel(pixel("b_%d.exr", 1), {0.375f, 0.5f, 0.25f, 0.11f});
+  // Released in the next recorded frame: x stays; the uniform halfway from 0.25 to 0.75.
+  expect_pixel(pixel("b_%d.exr", 3), {0.625f, 0.75f, 0.5f, 0.13f});
+  EXPECT_EQ(pixel("b_%d.exr", 4).size(), 4u);
+  EXPECT_TRUE(pixel("b_%d.exr", 5).empty());
+}
+
+TEST_F(Take, ASliceIsTheSameFramesOfTheWholeReplay) {
+  ASSERT_EQ(render("-o " + (dir_ / "w_%d.exr").string() + " --fps 20").status, 0);
+  const test::Outcome r = render("-o " + (dir_ / "s_%d.exr").string() + " --fps 20 --frame-range 2:3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(pixel("s_%d.exr", 1).empty());
+  for (int n : {2, 3}) EXPECT_EQ(pixel("s_%d.exr", n), pixel("w_%d.exr", n)) << n;
+}
+
+TEST_F(Take, AChangedSceneIsOneWarningThatNamesIt) {
+  // The hand-written take recorded no fingerprint of scene.frag: it is new to it.
+  const test::Outcome r = render("-o " + (dir_ / "c_%d.exr").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "raymarching: warning: take: changed since the take was recorded: scene.frag (new); every frame "
+                   "is drawn from the files as they are now\n");
+}
+
+TEST_F(Take, UsedWrongItSaysHowInOneLine) {
+  test::Outcome r = test::run_binary("render " + (dir_ / "scene.frag").string() + " --take " +
+                                     (dir_ / "t.take.json").string() + " -o " + (dir_ / "x_%d.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: --take names its own scene: give SCENE or --take, not both\n");
+  r = render("-o " + (dir_ / "x_%d.png").string() + " --time 3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: --time: a take gives every frame's inputs; leave it out with --take\n");
+  r = render("-o " + (dir_ / "still.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("a take is a sequence of 3 frames: give OUT a counter"), std::string::npos) << r.err;
+  r = test::run_binary("render --take " + (dir_ / "none.take.json").string() + " -o " + (dir_ / "x_%d.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("none.take.json"), std::string::npos) << r.err;
+  write_file(dir_ / "bad.take.json", "{\"raymarching_take\": 1,\n \"scene\": }");
+  r = test::run_binary("render --take " + (dir_ / "bad.take.json").string() + " -o " + (dir_ / "x_%d.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("bad.take.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = test::run_binary("render -o " + (dir_ / "x.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: render needs SCENE, or --take TAKE\n");
+}
+
+}  // namespace
+}  // namespace rm
