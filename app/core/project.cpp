@@ -184,12 +184,12 @@ void Project::commit() {
   for (const fs::path& file : reached) scene_for(file).commit();
   for (auto it = scenes_.begin(); it != scenes_.end();)
     it = std::find(reached.begin(), reached.end(), it->first) == reached.end() ? scenes_.erase(it) : std::next(it);
-  // Buffers in the order of their file names, then cube passes, then the
-  // image: Shadertoy's A, B, C, D, Cube A, Image.
+  // The stand-ins for missing media first, then buffers in the order of
+  // their file names, then cube passes, then the image: Shadertoy's A, B,
+  // C, D, Cube A, Image.
   std::vector<fs::path> buffers(reached.begin() + 1, reached.end());
-  std::sort(buffers.begin(), buffers.end(), [&](const fs::path& a, const fs::path& b) {
-    return std::make_tuple(cube_size.count(a), a.filename(), a) < std::make_tuple(cube_size.count(b), b.filename(), b);
-  });
+  auto order = [&](const fs::path& p) { return std::make_tuple(!is_media_stand_in(p), cube_size.count(p), p.filename(), p); };
+  std::sort(buffers.begin(), buffers.end(), [&](const fs::path& a, const fs::path& b) { return order(a) < order(b); });
   buffers.push_back(image_path_);
   passes_.clear();
   for (const fs::path& file : buffers) {

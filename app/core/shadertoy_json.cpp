@@ -107,6 +107,12 @@ std::string line_col(const std::string& text, size_t byte) {
 
 }  // namespace
 
+bool is_media_stand_in(const std::filesystem::path& pass) {
+  const std::string name = pass.filename().string();
+  return std::any_of(std::begin(kStandIns), std::end(kStandIns),
+                     [&](const StandIn& s) { return s.file && name == s.file; });
+}
+
 bool is_shadertoy_json(const std::filesystem::path& path) { return path.extension() == ".json"; }
 
 std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,

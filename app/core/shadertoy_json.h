@@ -45,6 +45,11 @@ std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path&
 
 bool is_shadertoy_json(const std::filesystem::path& path);
 
+// Whether `pass` is a stand-in the host made for missing media (value noise
+// for a texture, a sky for a cube map). Media exist before any pass draws,
+// so a stand-in is drawn before the buffers that read it.
+bool is_media_stand_in(const std::filesystem::path& pass);
+
 // Files under `json`/ come from the JSON file, read again on every call so a
 // save of the JSON reloads (and parsed again only when its text changed);
 // everything else comes from the disk.

@@ -95,6 +95,27 @@ TEST(ShadertoyProjects, MediaComeFromMediaAndMissingOnesFromStandIns) {
   EXPECT_NE(r.outcome.err.find("a sky stands in"), std::string::npos) << r.outcome.err;
 }
 
+// Media exist before a frame is drawn, and so do their stand-ins: a buffer
+// that reads a missing texture sees the stand-in in frame 0, and the project
+// feeds no frame into the next (it can be sliced, and drawn at any scale).
+TEST(ShadertoyProjects, AStandInIsDrawnBeforeTheBufferThatReadsIt) {
+  TempDir dir;
+  test::write_file(dir / "p.json", R"({"Shader": {"info": {"id": "x"}, "renderpass": [
+    {"type": "image", "name": "Image", "inputs": [{"channel": 0, "type": "buffer", "id": "4dXGR8"}],
+     "outputs": [{"id": "4dfGRr"}], "code": "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }"},
+    {"type": "buffer", "name": "Buffer A", "outputs": [{"id": "4dXGR8"}],
+     "inputs": [{"channel": 0, "type": "texture", "filepath": "/media/a/missing.png"}],
+     "code": "void mainImage(out vec4 c, in vec2 f) { c = vec4(texture(iChannel0, f / iResolution.xy).rgb, 1.0); }"}]}})");
+  const test::Outcome r = test::run_binary("render " + (dir / "p.json").string() + " -o " + (dir / "f_%d.exr").string() +
+                                           " --size 8x8 --frames 3 --frame-range 0:0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<float> px = test::read_pixels(dir / "f_0.exr");
+  ASSERT_EQ(px.size(), 8u * 8u * 4u);
+  float sum = 0;
+  for (size_t i = 0; i < px.size(); i += 4) sum += px[i] + px[i + 1] + px[i + 2];
+  EXPECT_GT(sum, 1.0f) << "frame 0 of the buffer read the stand-in's noise, not black";
+}
+
 TEST(ShadertoyProjects, WhatDoesNotRunIsOneWarningEachAndTheRestRuns) {
   const Rendered r = render("unsupported.json", 0);
   ASSERT_EQ(r.outcome.status, 0) << r.outcome.err;
