@@ -418,6 +418,8 @@ class WindowApp {
 
     const bool moving = advance && ((use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f);
     const bool budget_on = budget_.budget_ms() > 0;
+    if (moving && budget_on && !project_.has_feedback() && budget_.full_frame_ms() == 0 && project_.passes().size() > 1)
+      probe_buffers(width, height);
     const double scale = moving && budget_on && !project_.has_feedback() ? budget_.scale() : 1.0;
     const glm::ivec2 window(width, height);
     const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(window) * scale)));
@@ -456,6 +458,30 @@ class WindowApp {
     if (!clock_.paused()) clock_.next_frame();
   }
 
+  // A new program's buffer passes are drawn whole (only the image pass is
+  // drawn in tiles), so before their first moving picture they are drawn
+  // once at the smallest scale: what that costs sizes the picture. Without
+  // it, a heavy buffer (a terrain marched in Buffer A) drew its first
+  // picture at full size for seconds, with every key waiting. A buffer that
+  // feeds no later frame can be drawn again at any size.
+  void probe_buffers(int width, int height) {
+    const double scale = ScaleController::scale_of(ScaleController::kSteps - 1);
+    const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(width, height) * scale)));
+    const glm::vec2 ratio = glm::vec2(size) / glm::vec2(width, height);
+    FrameInputs in = inputs_;
+    in.resolution = glm::vec3(size, 1.0f);
+    in.mouse *= glm::vec4(ratio, ratio);
+    in.cursor *= ratio;
+    const long long start = steady_ns();
+    graph_.draw_buffers(project_, in, size);
+    glFinish();
+    const double ms = (steady_ns() - start) / 1e6;
+    budget_.measured(scale, ms);
+    if (options_.verbose)
+      std::cerr << "raymarching: a new program's buffers took " << ms << " ms at scale " << scale << "; its picture is "
+                << "drawn at scale " << budget_.scale() << '\n';
+  }
+
   // The inputs of the next frame, at the window's size: the clock ticks.
   void take_inputs(int width, int height) {
     const float delta = clock_.tick();
@@ -480,6 +506,7 @@ class WindowApp {
     bool straight = false;
     do {
       const glm::ivec4 tile = p.plan.next();
+      const bool first_draw = !program_drawn_;
       // With refinement on, every picture goes into the kept float picture,
       // where a picture at rest gathers its samples: llvmpipe compiles a
       // shader again for each target format (250 ms for tori), and one
@@ -506,9 +533,32 @@ class WindowApp {
         std::cerr << "raymarching: first draw of generation " << project_.generation() << ": a " << tile.z << "x"
                   << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";
       program_drawn_ = true;
+      if (!first_draw && replan()) return false;
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
     if (p.plan.done()) finish_picture(straight);
     return straight;
+  }
+
+  // A new program's first moving pictures are sized before anything has
+  // measured what it costs (at the last program's scale, or full size at
+  // the start), and a heavy one would take seconds in tiles. Once a tile
+  // has measured it, a picture that would take more than twice the budget
+  // is dropped, and the next is drawn at the scale that cost asks for.
+  // (Not the first tile of a program: the driver finishes compiling in it.)
+  bool replan() {
+    const auto& p = *drawing_;
+    const double budget = budget_.budget_ms();
+    if (p.resting || budget <= 0 || budget_.full_frame_ms() > 0 || project_.has_feedback() || p.plan.done()) return false;
+    const double whole_ms = p.plan.per_pixel_ms() * p.size.x * p.size.y;
+    if (whole_ms <= 2 * budget) return false;
+    budget_.measured(p.scale, whole_ms);
+    if (budget_.scale() >= p.scale) return false;
+    if (options_.verbose)
+      std::cerr << "raymarching: a new program's picture at scale " << p.scale << " would take " << whole_ms
+                << " ms; drawn again at scale " << budget_.scale() << '\n';
+    drawing_.reset();
+    dirty_ = true;
+    return true;
   }
 
   void finish_picture(bool straight) {

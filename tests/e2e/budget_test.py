@@ -7,7 +7,8 @@ minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
-built while the running one keeps drawing; an animated scene over budget is drawn at a lower scale, shown in the
+built while the running one keeps drawing; a project whose heavy pass is a buffer
+(which is drawn whole) has its first picture at a lower scale, probed first; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
 --refine supersamples, which the screen, F12 and `render --samples` agree
@@ -72,6 +73,20 @@ void mainImage(out vec4 c, in vec2 f) {
 """
 
 
+# A project whose heavy part is a buffer pass (drawn whole, never in
+# tiles), animated, feeding no later frame: about two seconds at 320x180.
+HEAVY_BUFFER_IMAGE = """#pragma channel0 "heavy_buffer.frag"
+void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }
+"""
+HEAVY_BUFFER = """// animated, heavy
+void mainImage(out vec4 c, in vec2 f) {
+  float a = iTime;
+  for (int i = 0; i < 20000; ++i) a = fract(a * 1.37 + sin(a + f.x * 0.01));
+  c = vec4(a, f / iResolution.xy, 1.0);
+}
+"""
+
+
 def start(work, name, source, *args):
     scene = os.path.join(work, name)
     with open(scene, "w") as f:
@@ -104,6 +119,42 @@ def heavy_session(work):
     print(f"     Q to exit: {took:.3f} s")
     check("Q quits a heavy shader within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
     check("... before its picture was finished", "picture 320x180" not in open(err).read(), open(err).read()[-500:])
+
+
+def heavy_buffer_scaled(work):
+    with open(os.path.join(work, "heavy_buffer.frag"), "w") as f:
+        f.write(HEAVY_BUFFER)
+    scene, proc, err, _ = start(work, "buffered.frag", HEAVY_BUFFER_IMAGE)
+    window = first_frame_window(proc, "buffered.frag", err, timeout=30)
+    check("a project with a heavy buffer opens", bool(window), open(err).read()[-500:])
+    if not window:
+        return
+    first = wait_for(lambda: re.search(r"picture (\d+)x\d+ scale ([0-9.e-]+)", open(err).read()), timeout=20)
+    check("its buffer's cost is probed before its first picture",
+          "a new program's buffers took" in open(err).read(), open(err).read()[-500:])
+    check("... whose first picture is drawn at a lower scale, not whole for seconds",
+          first is not None and float(first.group(2)) < 0.5, open(err).read()[-500:])
+    pressed = time.monotonic()
+    xdotool("key", "--window", window, "q")
+    try:
+        status = proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    took = time.monotonic() - pressed
+    check("Q quits it within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
+
+
+def heavy_animated_replanned(work):
+    scene, proc, err, _ = start(work, "heavy_animated.frag", HEAVY.replace("float a = 0.0;", "float a = iTime;"))
+    window = first_frame_window(proc, "heavy_animated.frag", err, timeout=30)
+    check("a heavy animated shader's window opens", bool(window))
+    if not window:
+        return
+    check("once a tile has measured it, its first picture is dropped for one at a lower scale",
+          wait_for(lambda: "drawn again at scale 0.125" in open(err).read(), timeout=10), open(err).read()[-800:])
+    xdotool("key", "--window", window, "q")
+    check("and Q quits", proc.wait(timeout=10) == 0)
 
 
 def heavy_fixed_by_a_save(work):
@@ -256,6 +307,8 @@ if __name__ == "__main__":
     work = tempfile.mkdtemp(prefix="rm-e2e-budget-")
     try:
         heavy_session(work)
+        heavy_buffer_scaled(work)
+        heavy_animated_replanned(work)
         heavy_fixed_by_a_save(work)
         too_slow_session(work)
         keeps_drawing_while_building(work)
