@@ -207,39 +207,73 @@ std::vector<FrameGraph::PassTime> FrameGraph::pass_times() const {
   return out;
 }
 
-void FrameGraph::draw_pass(const Project& project, size_t index, const FrameInputs& in, glm::ivec2 picture) {
+glm::ivec2 FrameGraph::pass_size(const Project& project, size_t index, glm::ivec2 picture) const {
+  const Pass& pass = project.passes()[index];
+  return pass.cube ? glm::ivec2(pass.cube_size) : picture;
+}
+
+bool FrameGraph::begin_pass(const Project& project, size_t index, glm::ivec2 picture) {
   const Pass& pass = project.passes()[index];
   Buffer& buffer = buffers_[pass.file];
-  const glm::ivec2 size = pass.cube ? glm::ivec2(pass.cube_size) : picture;
+  const glm::ivec2 size = pass_size(project, index, picture);
   if (buffer.size != size || buffer.cube != pass.cube) buffer.drawn_generation = -1;
   resize(buffer, size, pass.cube);
   const bool fixed = std::find(static_.begin(), static_.end(), pass.file) != static_.end();
-  if (fixed && buffer.drawn_generation == pass.scene->generation()) return;  // its picture is still right
-  buffer.drawn_generation = pass.scene->generation();
+  return !fixed || buffer.drawn_generation != pass.scene->generation();  // else its picture is still right
+}
+
+void FrameGraph::draw_pass_region(const Project& project, size_t index, const FrameInputs& in, glm::ivec4 region) {
+  const Pass& pass = project.passes()[index];
+  Buffer& buffer = buffers_[pass.file];
+  const glm::ivec2 size = buffer.size;
   FrameInputs pass_in = in;
   pass_in.resolution = glm::vec3(size, 1.0f);
   pass_in.frag_coord_offset = glm::vec2(0.0f);
   pass_in.sample = 0;  // a buffer is data that later frames read, not a picture to smooth
   const ChannelInputs inputs = inputs_of(project, index);
-  timed(project, index, [&] {
+  const bool whole = pass.cube || region == glm::ivec4(0, 0, size.x, size.y);
+  auto draw = [&] {
+    if (!whole) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(region.x, region.y, region.z, region.w);
+    }
     for (int face = 0; face < (pass.cube ? 6 : 1); ++face) {
       pass_in.cube_face = face;
       glBindFramebuffer(GL_FRAMEBUFFER, buffer.back_fbo[static_cast<size_t>(face)].get());
       renderer_.draw(*pass.scene->program(), pass_in, inputs, size);
     }
-  });
+    if (!whole) glDisable(GL_SCISSOR_TEST);
+  };
+  // Timed only whole: one query per pass and frame.
+  if (whole) timed(project, index, draw);
+  else draw();
+}
+
+void FrameGraph::end_pass(const Project& project, size_t index) {
+  const Pass& pass = project.passes()[index];
+  Buffer& buffer = buffers_[pass.file];
+  buffer.drawn_generation = pass.scene->generation();  // whole: a pass left in parts is drawn again
   std::swap(buffer.front, buffer.back);
   std::swap(buffer.front_fbo, buffer.back_fbo);
   if (std::find(mipmapped_.begin(), mipmapped_.end(), pass.file) != mipmapped_.end())
     glGenerateTextureMipmap(buffer.front.get());
 }
 
-void FrameGraph::draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size) {
+void FrameGraph::begin_frame(const Project& project) {
   times_.clear();
   if (project.reads_keyboard())
     glTextureSubImage2D(keyboard_texture_.get(), 0, 0, 0, KeyboardState::kKeys, 3, GL_RED, GL_UNSIGNED_BYTE,
                         keyboard_.texels().data());
-  for (size_t i = 0; i + 1 < project.passes().size(); ++i) draw_pass(project, i, in, size);
+}
+
+void FrameGraph::draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size) {
+  begin_frame(project);
+  for (size_t i = 0; i + 1 < project.passes().size(); ++i) {
+    if (!begin_pass(project, i, size)) continue;
+    const glm::ivec2 whole = pass_size(project, i, size);
+    draw_pass_region(project, i, in, {0, 0, whole.x, whole.y});
+    end_pass(project, i);
+  }
 }
 
 void FrameGraph::draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target) {

@@ -42,6 +42,18 @@ class FrameGraph {
   void draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target = 0);
   // Only the buffer passes: the frames before the one `render` writes.
   void draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size);
+  // draw_buffers in parts, for a window that draws a heavy buffer over
+  // several turns of its loop: begin_frame once (the keyboard), then for
+  // each buffer pass begin_pass (false: a static pass whose picture is still
+  // right, not to be drawn), draw_pass_region for parts of its target of
+  // pass_size (a Cube A pass draws its six faces whole), and end_pass, which
+  // makes what was drawn the pass's latest output. Its readers see the
+  // previous output until then.
+  void begin_frame(const Project& project);
+  bool begin_pass(const Project& project, size_t index, glm::ivec2 picture);
+  glm::ivec2 pass_size(const Project& project, size_t index, glm::ivec2 picture) const;
+  void draw_pass_region(const Project& project, size_t index, const FrameInputs& in, glm::ivec4 region);
+  void end_pass(const Project& project, size_t index);
   // Only the image pass, over `region` (x, y, width, height) of `target`'s
   // (0,0,size) viewport: one tile of a picture drawn in parts. gl_FragCoord
   // is the whole picture's, so every kind of shader can be drawn this way.
@@ -99,7 +111,6 @@ class FrameGraph {
     glm::ivec2 size{0};
   };
   void resize(Buffer& buffer, glm::ivec2 size, bool cube) const;
-  void draw_pass(const Project& project, size_t index, const FrameInputs& in, glm::ivec2 size);
   // Runs `draw` (pass `index` of `project`), timed when timing is on.
   template <typename Draw>
   void timed(const Project& project, size_t index, Draw draw);

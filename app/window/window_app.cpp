@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -246,6 +247,7 @@ class WindowApp {
       // the new one costs is unknown until a probe tile has measured it.
       drawing_.reset();
       budget_.forget();
+      buffer_cost_.clear();
       last_moving_done_ = 0;
       program_drawn_ = false;
       too_slow_ = false;
@@ -433,10 +435,9 @@ class WindowApp {
     const bool timed = ui_.visible() && (model_.hud || !model_.knobs.empty());
     graph_.time_passes(timed, true);
     const long long start = steady_ns();
-    if (advance) {
-      graph_.draw_buffers(project_, in, size);
-      glFinish();  // the buffers' time is the picture's too
-    }
+    // The buffer passes are drawn in continue_picture, in tiles like the
+    // image, so that a heavy one holds input no longer than a slice.
+    if (advance) graph_.begin_frame(project_);
     // Tiles of one budget, from the cost per pixel the last pictures
     // measured (unknown after a reload): a picture the controller sized to
     // fit (under kHoldAt of it, which leaves room for the present) is one tile.
@@ -445,6 +446,7 @@ class WindowApp {
     const double tile_ms = budget_on ? budget_.budget_ms() : 1e12;
     drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
                              (steady_ns() - start) / 1e6});
+    drawing_->next_buffer = advance ? 0 : project_.passes().size() - 1;
     if (sample == 0) samples_ = 0;
     if (!advance) return;
     // At rest, the picture is drawn again at full size, to be refined. Not a
@@ -505,6 +507,7 @@ class WindowApp {
     const double slice_ms = budget_.budget_ms() > 0 ? budget_.budget_ms() : 1e12;
     bool straight = false;
     do {
+      if (buffer_tile()) continue;
       const glm::ivec4 tile = p.plan.next();
       const bool first_draw = !program_drawn_;
       // With refinement on, every picture goes into the kept float picture,
@@ -537,6 +540,46 @@ class WindowApp {
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
     if (p.plan.done()) finish_picture(straight);
     return straight;
+  }
+
+  // One tile of the next buffer pass this picture still draws; false when
+  // its buffers are all drawn. Each pass's cost per pixel is kept from the
+  // frame before, so that a light buffer is one tile.
+  bool buffer_tile() {
+    auto& p = *drawing_;
+    const size_t buffers = project_.passes().size() - 1;
+    while (p.next_buffer < buffers) {
+      const size_t index = p.next_buffer;
+      const fs::path& file = project_.passes()[index].file;
+      if (!p.buffer_plan) {
+        if (!graph_.begin_pass(project_, index, p.size)) {
+          ++p.next_buffer;  // static, and drawn: its picture is still right
+          continue;
+        }
+        const glm::ivec2 size = graph_.pass_size(project_, index, p.size);
+        const bool whole = project_.passes()[index].cube || budget_.budget_ms() <= 0;  // a Cube A pass: its faces whole
+        const auto cost = buffer_cost_.find(file);
+        p.buffer_plan.emplace(size, whole ? 1e12 : budget_.budget_ms(),
+                              whole ? 1e-12 : cost == buffer_cost_.end() ? 0.0 : cost->second);
+      }
+      const glm::ivec4 tile = p.buffer_plan->next();
+      const long long start = steady_ns();
+      graph_.draw_pass_region(project_, index, p.inputs, tile);
+      glFinish();  // the tile is done: input is read before the next
+      const double ms = (steady_ns() - start) / 1e6;
+      p.buffer_plan->drawn(tile, ms);
+      p.buffers_ms += ms;
+      ++p.buffer_tiles;
+      if (p.buffer_plan->done()) {
+        graph_.end_pass(project_, index);
+        const glm::ivec2 size = graph_.pass_size(project_, index, p.size);
+        buffer_cost_[file] = p.buffer_plan->drawn_ms() / (double(size.x) * size.y);
+        p.buffer_plan.reset();
+        ++p.next_buffer;
+      }
+      return true;
+    }
+    return false;
   }
 
   // A new program's first moving pictures are sized before anything has
@@ -600,7 +643,9 @@ class WindowApp {
     if (!options_.verbose) return;
     const int tiles = drawing_->tiles;
     std::cerr << "raymarching: " << what << " in " << tiles << (tiles == 1 ? " tile, " : " tiles, ") << frame_ms_
-              << " ms, done at " << steady_ns() << '\n';
+              << " ms, done at " << steady_ns();
+    if (const int n = drawing_->buffer_tiles; n > 0) std::cerr << ", its buffers in " << n << (n == 1 ? " tile" : " tiles");
+    std::cerr << '\n';
   }
 
   // The watchdog: a shader whose smallest tile takes longer than the limit
@@ -662,7 +707,7 @@ class WindowApp {
     if (errors_ > 0) {
       title += std::to_string(errors_) + (errors_ == 1 ? " error" : " errors");
       title += project_.ready() ? ", showing last good" : ", nothing to show yet";
-    } else if (drawing_ && drawing_->tiles > 0) {  // a picture in tiles, still coming
+    } else if (drawing_ && (drawing_->tiles > 0 || drawing_->buffer_plan)) {  // a picture in tiles, still coming
       title += "drawing in tiles";
     } else {
       // The last picture's own time, through glFinish: not an average, so it
@@ -833,6 +878,9 @@ class WindowApp {
     bool resting = false;  // not moving: a newer picture replaces it
     TilePlan plan;
     double buffers_ms = 0;
+    size_t next_buffer = 0;              // the buffer pass to draw next; the image pass's index: none left
+    int buffer_tiles = 0;                // drawn so far, of every buffer pass
+    std::optional<TilePlan> buffer_plan{};  // of the buffer pass being drawn
     int tiles = 0;  // drawn so far
     double compile_ms = 0;  // a new program's first tile, which the driver compiles it in: not the picture's cost
   };
@@ -843,6 +891,7 @@ class WindowApp {
   int samples_ = 0;             // supersamples the kept picture holds of the picture at rest; 0: not at rest
   bool program_drawn_ = false;  // the current program has drawn a tile (the driver has compiled it)
   bool too_slow_ = false;       // the watchdog stopped the current program
+  std::map<fs::path, double> buffer_cost_;  // each buffer pass's ms per pixel in its last frame
   std::chrono::steady_clock::time_point title_updated_{};
   int windowed_[4] = {0, 0, 800, 450};
 };

@@ -87,6 +87,21 @@ void mainImage(out vec4 c, in vec2 f) {
 """
 
 
+# A buffer that feeds itself: each frame's pixels from its last, by iFrame
+# and position alone, so that `render --frame N` draws the same frame N.
+FEEDBACK_IMAGE = """#pragma channel0 "feedback_buffer.frag"
+void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }
+"""
+FEEDBACK_BUFFER = """#pragma channel0 self filter=nearest
+void mainImage(out vec4 c, in vec2 f) {
+  vec4 last = iFrame == 0 ? vec4(f / iResolution.xy, 0.0, 1.0) : texelFetch(iChannel0, ivec2(f), 0);
+  float a = last.z;
+  for (int i = 0; i < 200; ++i) a = fract(a * 1.37 + sin(a + f.x * 0.01 + f.y * 0.013));
+  c = vec4(fract(last.xy + vec2(0.013, 0.007)), a, 1.0);
+}
+"""
+
+
 def start(work, name, source, *args):
     scene = os.path.join(work, name)
     with open(scene, "w") as f:
@@ -155,6 +170,35 @@ def heavy_animated_replanned(work):
           wait_for(lambda: "drawn again at scale 0.125" in open(err).read(), timeout=10), open(err).read()[-800:])
     xdotool("key", "--window", window, "q")
     check("and Q quits", proc.wait(timeout=10) == 0)
+
+
+def tiled_feedback(work):
+    # A budget of 1000 fps: the feedback buffer is drawn in tiles, frame after frame.
+    with open(os.path.join(work, "feedback_buffer.frag"), "w") as f:
+        f.write(FEEDBACK_BUFFER)
+    scene, proc, err, out = start(work, "feedback.frag", FEEDBACK_IMAGE, "--target-fps", "1000", "--shot-dir", work,
+                                  "--no-ui")
+    window = first_frame_window(proc, "feedback.frag", err, timeout=30)
+    check("a feedback project's window opens", bool(window))
+    if not window:
+        return
+    tiled = wait_for(lambda: len(re.findall(r"picture 320x180 scale 1 in .*, its buffers in (\d+) tiles",
+                                            open(err).read())) > 10, timeout=20)
+    check("its buffer is drawn in tiles, picture after picture", bool(tiled), open(err).read()[-500:])
+    xdotool("key", "--window", window, "space")
+    time.sleep(0.5)
+    shot = take_screenshot(window, out)
+    check("paused, F12 writes a shot", bool(shot))
+    if shot:
+        command = shlex.split(metadata(shot)["ImageDescription"])
+        reference = os.path.join(work, "feedback_reference.png")
+        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
+        diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
+                              capture_output=True, text=True)
+        check("a buffer drawn in tiles frame after frame is the one `render` draws whole", diff.returncode == 0,
+              diff.stdout + " " + " ".join(command))
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
 
 
 def heavy_fixed_by_a_save(work):
@@ -309,6 +353,7 @@ if __name__ == "__main__":
         heavy_session(work)
         heavy_buffer_scaled(work)
         heavy_animated_replanned(work)
+        tiled_feedback(work)
         heavy_fixed_by_a_save(work)
         too_slow_session(work)
         keeps_drawing_while_building(work)
