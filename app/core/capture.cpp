@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
 #include <cmath>
 #include <cstring>
 
@@ -94,6 +97,18 @@ std::string writable_image_extensions() {
     return out;
   }();
   return list;
+}
+
+std::string file_timestamp() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  std::tm local{};
+  localtime_r(&t, &local);
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  char day[32], out[48];
+  std::strftime(day, sizeof day, "%Y%m%d-%H%M%S", &local);
+  std::snprintf(out, sizeof out, "%s-%03d", day, static_cast<int>(ms));
+  return out;
 }
 
 fs::path temporary_sibling(const fs::path& path) {

@@ -29,6 +29,10 @@ std::optional<std::string> check_output_path(const fs::path& path);
 // written in exists and is writable.
 std::optional<std::string> check_output_directory(const fs::path& path);
 
+// The local time to the millisecond, as screenshots and takes are named
+// (20261124-043537-161): two files of one scene never share a name.
+std::string file_timestamp();
+
 // A hidden name beside `path`, unique in this process, with path's extension:
 // where a file is written before it is renamed to `path`.
 fs::path temporary_sibling(const fs::path& path);

@@ -27,15 +27,7 @@ std::string record_mouse(const FrameInputs& in) {
   return number(m.x) + "," + number(m.y) + "," + number(m.z) + "," + number(m.w);
 }
 
-// As `render --date` reads it: local YYYY-MM-DDTHH:MM:SS.sss.
-std::string record_date(const FrameInputs& in) {
-  const int seconds = static_cast<int>(in.date.w);
-  char date[64];
-  std::snprintf(date, sizeof date, "%04d-%02d-%02dT%02d:%02d:%06.3f", static_cast<int>(in.date.x),
-                static_cast<int>(in.date.y) + 1, static_cast<int>(in.date.z), seconds / 3600, seconds / 60 % 60,
-                std::fmod(static_cast<double>(in.date.w), 60.0));
-  return date;
-}
+std::string record_date(const FrameInputs& in) { return date_text(in.date); }
 
 }  // namespace
 

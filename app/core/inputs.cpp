@@ -1,5 +1,7 @@
 #include "core/inputs.h"
 
+#include <cmath>
+#include <cstdio>
 #include <ctime>
 
 namespace rm {
@@ -40,6 +42,15 @@ glm::vec4 date_of(std::chrono::system_clock::time_point when) {
   const double of_day = local.tm_hour * 3600.0 + local.tm_min * 60.0 + local.tm_sec + fraction;
   return {static_cast<float>(local.tm_year + 1900), static_cast<float>(local.tm_mon),
           static_cast<float>(local.tm_mday), static_cast<float>(of_day)};
+}
+
+std::string date_text(const glm::vec4& date) {
+  const int seconds = static_cast<int>(date.w);
+  char out[64];
+  std::snprintf(out, sizeof out, "%04d-%02d-%02dT%02d:%02d:%06.3f", static_cast<int>(date.x),
+                static_cast<int>(date.y) + 1, static_cast<int>(date.z), seconds / 3600, seconds / 60 % 60,
+                std::fmod(static_cast<double>(date.w), 60.0));
+  return out;
 }
 
 }  // namespace rm

@@ -85,5 +85,7 @@ class ShaderClock {
 
 // iDate for a wall-clock instant, in local time.
 glm::vec4 date_of(std::chrono::system_clock::time_point when);
+// An iDate as `render --date` reads it: local YYYY-MM-DDTHH:MM:SS.sss.
+std::string date_text(const glm::vec4& date);
 
 }  // namespace rm

@@ -3,7 +3,8 @@
 # One list, so that a new dependency of core/source is added in one place.
 # program.cpp comes along because the host-input table sets uniforms on a
 # Program; the fuzz targets never call it, but it links against libepoxy.
-# supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's offset.
+# supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's
+# offset; and inputs.cpp: the table records iDate as `render --date` reads it.
 set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/source.cpp
   ${CMAKE_CURRENT_LIST_DIR}/files.cpp
@@ -14,6 +15,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/channel_spec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/host_inputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/supersampling.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/inputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/program.cpp
   ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
 )

@@ -26,8 +26,6 @@ json floats(const float* v, int n) {
   return out;
 }
 
-bool same(const glm::vec4& a, const glm::vec4& b) { return a == b; }
-
 // A uniform's text as `--set` spells it, back to numbers: "1.5", "true", "0.1,0.2".
 std::vector<float> uniform_numbers(const std::string& text) {
   std::vector<float> out;
@@ -154,7 +152,7 @@ std::optional<std::filesystem::path> write_take(const std::filesystem::path& pat
     line["t"] = f.time;
     line["f"] = f.frame;
     if (!previous || f.size != previous->size) line["r"] = {f.size.x, f.size.y};
-    if (!previous || !same(f.mouse, previous->mouse)) line["m"] = floats(&f.mouse.x, 4);
+    if (!previous || f.mouse != previous->mouse) line["m"] = floats(&f.mouse.x, 4);
     if (!previous || f.cursor != previous->cursor) line["c"] = floats(&f.cursor.x, 2);
     json keys = json::array();
     for (const KeyEvent& k : f.keys) keys.push_back({k.code, k.down ? 1 : 0});

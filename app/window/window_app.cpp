@@ -70,19 +70,6 @@ bool mesa_cache_disabled() {
   return false;
 }
 
-std::string timestamp_now() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t t = std::chrono::system_clock::to_time_t(now);
-  std::tm local{};
-  localtime_r(&t, &local);
-  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", &local);
-  char out[80];
-  std::snprintf(out, sizeof out, "%s-%03d", buf, static_cast<int>(ms));
-  return out;
-}
-
 class WindowApp {
  public:
   WindowApp(const WindowOptions& options, GLFWwindow* window)
@@ -424,13 +411,9 @@ class WindowApp {
       probe_buffers(width, height);
     const double scale = moving && budget_on && !project_.has_feedback() ? budget_.scale() : 1.0;
     const glm::ivec2 window(width, height);
-    const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(window) * scale)));
-    const glm::vec2 ratio = glm::vec2(size) / glm::vec2(window);
-    FrameInputs in = inputs_;
+    FrameInputs in = inputs_at_scale(window, scale);
     in.sample = sample;
-    in.resolution = glm::vec3(size, 1.0f);
-    in.mouse *= glm::vec4(ratio, ratio);
-    in.cursor *= ratio;
+    const glm::ivec2 size(in.resolution);
 
     const bool timed = ui_.visible() && (model_.hud || !model_.knobs.empty());
     graph_.time_passes(timed, true);
@@ -460,22 +443,28 @@ class WindowApp {
     if (!clock_.paused()) clock_.next_frame();
   }
 
-  // A new program's buffer passes are drawn whole (only the image pass is
-  // drawn in tiles), so before their first moving picture they are drawn
-  // once at the smallest scale: what that costs sizes the picture. Without
-  // it, a heavy buffer (a terrain marched in Buffer A) drew its first
-  // picture at full size for seconds, with every key waiting. A buffer that
-  // feeds no later frame can be drawn again at any size.
-  void probe_buffers(int width, int height) {
-    const double scale = ScaleController::scale_of(ScaleController::kSteps - 1);
-    const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(width, height) * scale)));
-    const glm::vec2 ratio = glm::vec2(size) / glm::vec2(width, height);
+  // The next frame's inputs for a picture of `window` at `scale` per axis:
+  // its resolution, and the mouse's pixels in it.
+  FrameInputs inputs_at_scale(glm::ivec2 window, double scale) const {
+    const glm::ivec2 size = glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(window) * scale)));
+    const glm::vec2 ratio = glm::vec2(size) / glm::vec2(window);
     FrameInputs in = inputs_;
     in.resolution = glm::vec3(size, 1.0f);
     in.mouse *= glm::vec4(ratio, ratio);
     in.cursor *= ratio;
+    return in;
+  }
+
+  // Nothing has measured a new program's buffers yet, and their first
+  // picture at the last program's scale (full size at the start) would take
+  // seconds, even in tiles: before their first moving picture they are drawn
+  // once at the smallest scale, and what that costs sizes the picture. A
+  // buffer that feeds no later frame can be drawn again at any size.
+  void probe_buffers(int width, int height) {
+    const double scale = ScaleController::scale_of(ScaleController::kSteps - 1);
+    const FrameInputs in = inputs_at_scale({width, height}, scale);
     const long long start = steady_ns();
-    graph_.draw_buffers(project_, in, size);
+    graph_.draw_buffers(project_, in, glm::ivec2(in.resolution));
     glFinish();
     const double ms = (steady_ns() - start) / 1e6;
     budget_.measured(scale, ms);
@@ -751,7 +740,7 @@ class WindowApp {
     const int samples = refined ? samples_ : 1;
     Image image = refined ? picture_.read() : graph_.render_image(project_, in, size);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    const std::string name = options_.scene.stem().string() + "-" + timestamp_now() + "." + options_.shot_format;
+    const std::string name = options_.scene.stem().string() + "-" + file_timestamp() + "." + options_.shot_format;
     Metadata metadata = frame_metadata(options_.scene, source_, in, samples);
     // Which frame of the take being recorded this is: `render --take` draws it again.
     if (take_.recording()) metadata.emplace_back("raymarching:take_frame", std::to_string(take_.current_frame()));

@@ -112,6 +112,19 @@ def start(work, name, source, *args):
     return scene, proc, err, out
 
 
+def quit_with_q(proc, window):
+    """Presses Q; the exit status (None if it did not exit in 10 s, then
+    killed) and the seconds from the key to the exit."""
+    pressed = time.monotonic()
+    xdotool("key", "--window", window, "q")
+    try:
+        status = proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    return status, time.monotonic() - pressed
+
+
 def heavy_session(work):
     scene, proc, err, _ = start(work, "heavy.frag", HEAVY)
     window = first_frame_window(proc, "heavy.frag", err, timeout=30)
@@ -123,14 +136,7 @@ def heavy_session(work):
           wait_for(lambda: "drawing in tiles" in xdotool("getwindowname", window), timeout=10),
           xdotool("getwindowname", window))
     time.sleep(1.0)
-    pressed = time.monotonic()
-    xdotool("key", "--window", window, "q")
-    try:
-        status = proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        status = None
-    took = time.monotonic() - pressed
+    status, took = quit_with_q(proc, window)
     print(f"     Q to exit: {took:.3f} s")
     check("Q quits a heavy shader within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
     check("... before its picture was finished", "picture 320x180" not in open(err).read(), open(err).read()[-500:])
@@ -149,14 +155,7 @@ def heavy_buffer_scaled(work):
           "a new program's buffers took" in open(err).read(), open(err).read()[-500:])
     check("... whose first picture is drawn at a lower scale, not whole for seconds",
           first is not None and float(first.group(2)) < 0.5, open(err).read()[-500:])
-    pressed = time.monotonic()
-    xdotool("key", "--window", window, "q")
-    try:
-        status = proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        status = None
-    took = time.monotonic() - pressed
+    status, took = quit_with_q(proc, window)
     check("Q quits it within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
 
 
