@@ -2,6 +2,7 @@
 // writes one, core/take.h) replayed frame by frame, as recorded and at
 // another rate, and the one-line errors of a take used wrong.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -92,6 +93,14 @@ TEST_F(Take, ASliceIsTheSameFramesOfTheWholeReplay) {
   for (int n : {2, 3}) EXPECT_EQ(pixel("s_%d.exr", n), pixel("w_%d.exr", n)) << n;
 }
 
+// A long take is larger than a shader may be: its own limit is not the shaders' 16 MiB.
+TEST_F(Take, ATakeLargerThanAShaderIsRead) {
+  write_file(dir_ / "t.take.json", std::string(kTake) + std::string(17u << 20, ' '));
+  const test::Outcome r = render("-o " + (dir_ / "l_%d.exr").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(pixel("l_%d.exr", 2).size(), 4u);
+}
+
 TEST_F(Take, AChangedSceneIsOneWarningThatNamesIt) {
   // The hand-written take recorded no fingerprint of scene.frag: it is new to it.
   const test::Outcome r = render("-o " + (dir_ / "c_%d.exr").string());
@@ -120,6 +129,11 @@ TEST_F(Take, UsedWrongItSaysHowInOneLine) {
   EXPECT_NE(r.err.find("bad.take.json"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  ASSERT_EQ(mkfifo((dir_ / "fifo.take.json").c_str(), 0600), 0);
+  r = test::run_binary("render --take " + (dir_ / "fifo.take.json").string() + " -o " + (dir_ / "x_%d.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: take '" + (dir_ / "fifo.take.json").string() +
+                       "': is a named pipe (FIFO), not a regular file\n");
   r = test::run_binary("render -o " + (dir_ / "x.png").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "raymarching: error: render needs SCENE, or --take TAKE\n");
