@@ -407,9 +407,16 @@ class WindowApp {
 
     const bool moving = advance && ((use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f);
     const bool budget_on = budget_.budget_ms() > 0;
-    if (moving && budget_on && !project_.has_feedback() && budget_.full_frame_ms() == 0 && project_.passes().size() > 1)
-      probe_buffers(width, height);
-    const double scale = moving && budget_on && !project_.has_feedback() ? budget_.scale() : 1.0;
+    const bool scaled = moving && budget_on && !project_.has_feedback();
+    // Nothing has measured a new program's buffers yet, and they are drawn
+    // whole before its image: at the last program's scale (full size at the
+    // start) a heavy one would take seconds, even in tiles. Its first moving
+    // picture is drawn at the smallest scale, in tiles like any other, and
+    // what it costs sizes the next.
+    const bool unmeasured_buffers = budget_.full_frame_ms() == 0 && project_.passes().size() > 1;
+    const double scale = !scaled ? 1.0
+                         : unmeasured_buffers ? ScaleController::scale_of(ScaleController::kSteps - 1)
+                                              : budget_.scale();
     const glm::ivec2 window(width, height);
     FrameInputs in = inputs_at_scale(window, scale);
     in.sample = sample;
@@ -455,24 +462,6 @@ class WindowApp {
     return in;
   }
 
-  // Nothing has measured a new program's buffers yet, and their first
-  // picture at the last program's scale (full size at the start) would take
-  // seconds, even in tiles: before their first moving picture they are drawn
-  // once at the smallest scale, and what that costs sizes the picture. A
-  // buffer that feeds no later frame can be drawn again at any size.
-  void probe_buffers(int width, int height) {
-    const double scale = ScaleController::scale_of(ScaleController::kSteps - 1);
-    const FrameInputs in = inputs_at_scale({width, height}, scale);
-    const long long start = steady_ns();
-    graph_.draw_buffers(project_, in, glm::ivec2(in.resolution));
-    glFinish();
-    const double ms = (steady_ns() - start) / 1e6;
-    budget_.measured(scale, ms);
-    if (options_.verbose)
-      std::cerr << "raymarching: a new program's buffers took " << ms << " ms at scale " << scale << "; its picture is "
-                << "drawn at scale " << budget_.scale() << '\n';
-  }
-
   // The inputs of the next frame, at the window's size: the clock ticks.
   void take_inputs(int width, int height) {
     const float delta = clock_.tick();
@@ -496,7 +485,10 @@ class WindowApp {
     const double slice_ms = budget_.budget_ms() > 0 ? budget_.budget_ms() : 1e12;
     bool straight = false;
     do {
-      if (buffer_tile()) continue;
+      if (buffer_tile()) {
+        if (!drawing_) return false;  // the watchdog stopped it
+        continue;
+      }
       const glm::ivec4 tile = p.plan.next();
       const bool first_draw = !program_drawn_;
       // With refinement on, every picture goes into the kept float picture,
@@ -517,7 +509,7 @@ class WindowApp {
       // The first draw of a program also compiles it in the driver: not a measure of the shader.
       const bool probe = tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe;
       if (probe && program_drawn_ && ms > options_.tile_limit_s * 1000.0) {
-        report_too_slow(tile, ms);
+        report_too_slow(project_.passes().back().file, tile, ms);
         return false;
       }
       if (!program_drawn_ && probe) p.compile_ms = ms;
@@ -533,7 +525,9 @@ class WindowApp {
 
   // One tile of the next buffer pass this picture still draws; false when
   // its buffers are all drawn. Each pass's cost per pixel is kept from the
-  // frame before, so that a light buffer is one tile.
+  // frame before, so that a light buffer is one tile. The watchdog looks at
+  // every smallest tile but a pass's first since the reload, in which the
+  // driver may still be compiling.
   bool buffer_tile() {
     auto& p = *drawing_;
     const size_t buffers = project_.passes().size() - 1;
@@ -552,10 +546,16 @@ class WindowApp {
                               whole ? 1e-12 : cost == buffer_cost_.end() ? 0.0 : cost->second);
       }
       const glm::ivec4 tile = p.buffer_plan->next();
+      const bool first_of_pass = p.buffer_plan->drawn_ms() == 0 && !buffer_cost_.count(file);
       const long long start = steady_ns();
       graph_.draw_pass_region(project_, index, p.inputs, tile);
       glFinish();  // the tile is done: input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
+      const bool probe = tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe;
+      if (probe && !first_of_pass && ms > options_.tile_limit_s * 1000.0) {
+        report_too_slow(file, tile, ms);
+        return true;
+      }
       p.buffer_plan->drawn(tile, ms);
       p.buffers_ms += ms;
       ++p.buffer_tiles;
@@ -639,12 +639,12 @@ class WindowApp {
 
   // The watchdog: a shader whose smallest tile takes longer than the limit
   // is not drawn again until a save replaces it; the picture stays as it is.
-  void report_too_slow(glm::ivec4 tile, double ms) {
+  void report_too_slow(const fs::path& file, glm::ivec4 tile, double ms) {
     char message[200];
     std::snprintf(message, sizeof message,
                   "too slow: a %dx%d tile took %.2f s (--tile-limit %g s); not drawn again until the next save",
                   tile.z, tile.w, ms / 1000.0, options_.tile_limit_s);
-    const Diagnostic too_slow{Severity::Error, project_.passes().back().file.string(), 0, 0, message};
+    const Diagnostic too_slow{Severity::Error, file.string(), 0, 0, message};
     std::cerr << too_slow.str() << '\n';
     model_.errors.push_back(too_slow);
     ++errors_;

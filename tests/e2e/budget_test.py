@@ -8,7 +8,9 @@ a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
 built while the running one keeps drawing; a project whose heavy pass is a buffer
-(which is drawn whole) has its first picture at a lower scale, probed first; an animated scene over budget is drawn at a lower scale, shown in the
+has its first picture at the smallest scale, its buffer drawn in tiles, and Q
+quits within 1 s while it draws; a runaway buffer is reported too slow with its
+own file; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
 --refine supersamples, which the screen, F12 and `render --samples` agree
@@ -73,18 +75,14 @@ void mainImage(out vec4 c, in vec2 f) {
 """
 
 
-# A project whose heavy part is a buffer pass (drawn whole, never in
-# tiles), animated, feeding no later frame: about two seconds at 320x180.
+# A project whose heavy part is a buffer pass, animated, feeding no later
+# frame: HEAVY's loop, half a minute a picture at 320x180, and about a
+# second even at the smallest scale (40x23), where a new program's first
+# moving picture is drawn.
 HEAVY_BUFFER_IMAGE = """#pragma channel0 "heavy_buffer.frag"
 void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }
 """
-HEAVY_BUFFER = """// animated, heavy
-void mainImage(out vec4 c, in vec2 f) {
-  float a = iTime;
-  for (int i = 0; i < 20000; ++i) a = fract(a * 1.37 + sin(a + f.x * 0.01));
-  c = vec4(a, f / iResolution.xy, 1.0);
-}
-"""
+HEAVY_BUFFER = HEAVY.replace("float a = 0.0;", "float a = iTime;")
 
 
 # A buffer that feeds itself: each frame's pixels from its last, by iFrame
@@ -150,13 +148,36 @@ def heavy_buffer_scaled(work):
     check("a project with a heavy buffer opens", bool(window), open(err).read()[-500:])
     if not window:
         return
-    first = wait_for(lambda: re.search(r"picture (\d+)x\d+ scale ([0-9.e-]+)", open(err).read()), timeout=20)
-    check("its buffer's cost is probed before its first picture",
-          "a new program's buffers took" in open(err).read(), open(err).read()[-500:])
-    check("... whose first picture is drawn at a lower scale, not whole for seconds",
-          first is not None and float(first.group(2)) < 0.5, open(err).read()[-500:])
+    first = wait_for(lambda: re.search(r"picture (\d+)x\d+ scale ([0-9.e-]+) in \d+ tiles?, .*its buffers in (\d+) tiles",
+                                       open(err).read()), timeout=20)
+    check("its first picture is drawn at the smallest scale, its buffer in tiles",
+          first is not None and float(first.group(2)) == 0.125 and int(first.group(3)) > 1, open(err).read()[-500:])
+    # A save makes a new program, whose buffer nothing has measured: Q as
+    # soon as it is swapped in. Drawn whole, even at the smallest scale, the
+    # buffer held the window for over a second.
+    save_by_rename(os.path.join(work, "heavy_buffer.frag"), HEAVY_BUFFER.replace("heavy on purpose", "saved again"))
+    check("a save of the buffer makes a new program",
+          wait_for(lambda: "reload ok generation 2" in open(err).read(), timeout=30, step=0.01), open(err).read()[-500:])
     status, took = quit_with_q(proc, window)
     check("Q quits it within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
+
+
+def too_slow_buffer(work):
+    with open(os.path.join(work, "runaway_buffer.frag"), "w") as f:
+        f.write(HEAVY_BUFFER)
+    scene, proc, err, _ = start(work, "runaway.frag", HEAVY_BUFFER_IMAGE.replace("heavy_buffer", "runaway_buffer"),
+                                "--tile-limit", "0.02")
+    window = first_frame_window(proc, "runaway.frag", err, timeout=30)
+    check("a project with a runaway buffer opens", bool(window))
+    if not window:
+        return
+    buffer = os.path.join(work, "runaway_buffer.frag")
+    line = wait_for(lambda: re.search(re.escape(buffer) + r": error: too slow: a \d+x\d+ tile took [0-9.]+ s "
+                                      r"\(--tile-limit 0\.02 s\)", open(err).read()), timeout=10)
+    check("a buffer's smallest tile over --tile-limit is reported too slow, with the buffer's file", bool(line),
+          open(err).read()[-800:])
+    status, took = quit_with_q(proc, window)
+    check("and Q quits", status == 0, f"status {status}")
 
 
 def heavy_animated_replanned(work):
@@ -355,6 +376,7 @@ if __name__ == "__main__":
         tiled_feedback(work)
         heavy_fixed_by_a_save(work)
         too_slow_session(work)
+        too_slow_buffer(work)
         keeps_drawing_while_building(work)
         scaled_then_refined(work)
         refined_still(work)
