@@ -207,15 +207,21 @@ std::vector<FrameGraph::PassTime> FrameGraph::pass_times() const {
   return out;
 }
 
+// The size of one of the pass's targets: a cube face's, or the picture's.
+static glm::ivec2 face_size(const Pass& pass, glm::ivec2 picture) {
+  return pass.cube ? glm::ivec2(pass.cube_size) : picture;
+}
+
 glm::ivec2 FrameGraph::pass_size(const Project& project, size_t index, glm::ivec2 picture) const {
   const Pass& pass = project.passes()[index];
-  return pass.cube ? glm::ivec2(pass.cube_size) : picture;
+  const glm::ivec2 face = face_size(pass, picture);
+  return pass.cube ? glm::ivec2(face.x, 6 * face.y) : face;
 }
 
 bool FrameGraph::begin_pass(const Project& project, size_t index, glm::ivec2 picture) {
   const Pass& pass = project.passes()[index];
   Buffer& buffer = buffers_[pass.file];
-  const glm::ivec2 size = pass_size(project, index, picture);
+  const glm::ivec2 size = face_size(pass, picture);
   if (buffer.size != size || buffer.cube != pass.cube) buffer.drawn_generation = -1;
   resize(buffer, size, pass.cube);
   const bool fixed = std::find(static_.begin(), static_.end(), pass.file) != static_.end();
@@ -231,13 +237,15 @@ void FrameGraph::draw_pass_region(const Project& project, size_t index, const Fr
   pass_in.frag_coord_offset = glm::vec2(0.0f);
   pass_in.sample = 0;  // a buffer is data that later frames read, not a picture to smooth
   const ChannelInputs inputs = inputs_of(project, index);
-  const bool whole = pass.cube || region == glm::ivec4(0, 0, size.x, size.y);
+  const int faces = pass.cube ? 6 : 1;
+  const bool whole = region == glm::ivec4(0, 0, size.x, faces * size.y);
   auto draw = [&] {
-    if (!whole) {
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(region.x, region.y, region.z, region.w);
-    }
-    for (int face = 0; face < (pass.cube ? 6 : 1); ++face) {
+    if (!whole) glEnable(GL_SCISSOR_TEST);
+    for (int face = 0; face < faces; ++face) {
+      // The region's rows on this face (faces are stacked, face 0 at the bottom).
+      const int bottom = std::max(region.y, face * size.y), top = std::min(region.y + region.w, (face + 1) * size.y);
+      if (bottom >= top) continue;
+      if (!whole) glScissor(region.x, bottom - face * size.y, region.z, top - bottom);
       pass_in.cube_face = face;
       glBindFramebuffer(GL_FRAMEBUFFER, buffer.back_fbo[static_cast<size_t>(face)].get());
       renderer_.draw(*pass.scene->program(), pass_in, inputs, size);

@@ -46,7 +46,8 @@ class FrameGraph {
   // several turns of its loop: begin_frame once (the keyboard), then for
   // each buffer pass begin_pass (false: a static pass whose picture is still
   // right, not to be drawn), draw_pass_region for parts of its target of
-  // pass_size (a Cube A pass draws its six faces whole), and end_pass, which
+  // pass_size (a Cube A pass's six faces stacked, +X at the bottom, so that
+  // a region may span faces), and end_pass, which
   // makes what was drawn the pass's latest output. Its readers see the
   // previous output until then.
   void begin_frame(const Project& project);

@@ -540,7 +540,7 @@ class WindowApp {
           continue;
         }
         const glm::ivec2 size = graph_.pass_size(project_, index, p.size);
-        const bool whole = project_.passes()[index].cube || budget_.budget_ms() <= 0;  // a Cube A pass: its faces whole
+        const bool whole = budget_.budget_ms() <= 0;
         const auto cost = buffer_cost_.find(file);
         p.buffer_plan.emplace(size, whole ? 1e12 : budget_.budget_ms(),
                               whole ? 1e-12 : cost == buffer_cost_.end() ? 0.0 : cost->second);

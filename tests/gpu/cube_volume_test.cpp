@@ -132,6 +132,38 @@ void mainImage(out vec4 c, in vec2 f) {
   }
 }
 
+// The window draws a heavy Cube A pass in tiles, as any buffer: regions of
+// its six faces stacked, here 20 rows each, so that most span two faces.
+TEST_F(Cubes, ACubePassDrawnInRegionsEqualsOneDrawnWhole) {
+  write_file(dir_ / "cube_a.frag", "void mainCubemap(out vec4 c, in vec2 f, in vec3 ro, in vec3 rd) {\n"
+                                   "  c = vec4(rd * 0.5 + 0.5, f.x / 32.0);\n}\n");
+  write_file(dir_ / "image.frag", R"(#pragma channel0 "cube_a.frag" cube size=32 filter=nearest
+void mainImage(out vec4 c, in vec2 f) {
+  vec3 d = normalize(vec3(cos(f.x * 0.7), sin(f.x * 1.3), sin(f.x * 0.4 + 1.0)));
+  c = texture(iChannel0, d);
+}
+)");
+  const Image whole = render("image.frag", 64);
+  FrameGraph tiled_graph{renderer_};
+  std::string error;
+  ASSERT_TRUE(tiled_graph.update(*project_, &error)) << error;
+  FrameInputs in;
+  in.resolution = glm::vec3(64, 1, 1);
+  tiled_graph.begin_frame(*project_);
+  ASSERT_TRUE(tiled_graph.begin_pass(*project_, 0, {64, 1}));
+  const glm::ivec2 size = tiled_graph.pass_size(*project_, 0, {64, 1});
+  ASSERT_EQ(size, glm::ivec2(32, 6 * 32)) << "the six faces stacked";
+  for (int y = 0; y < size.y; y += 20)
+    for (int x = 0; x < size.x; x += 16) tiled_graph.draw_pass_region(*project_, 0, in, {x, y, 16, std::min(20, size.y - y)});
+  tiled_graph.end_pass(*project_, 0);
+  const Image tiled = tiled_graph.render_image(*project_, in, {64, 1}, 1, MotionBlur{});
+  ASSERT_EQ(tiled.rgba.size(), whole.rgba.size());
+  EXPECT_EQ(tiled.rgba, whole.rgba) << "every direction reads the same texel, drawn in parts or whole";
+  bool faces_differ = false;  // the directions do reach several faces
+  for (int x = 1; x < 64; ++x) faces_differ |= std::abs(at(whole, x).w - at(whole, 0).w) > 0.0f;
+  EXPECT_TRUE(faces_differ);
+}
+
 TEST_F(Cubes, ACubePassThatReadsItselfAccumulates) {
   write_file(dir_ / "cube_a.frag", "#pragma channel0 self filter=nearest\n"
                                    "void mainCubemap(out vec4 c, in vec2 f, in vec3 ro, in vec3 rd) {\n"
