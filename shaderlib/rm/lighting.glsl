@@ -168,10 +168,13 @@ float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
 }
 
 // Ambient occlusion at p with unit normal n: how much nearby geometry blocks
-// the hemisphere, 1 = open. Distances are measured from the surface (map(p) is
-// subtracted), so a hit point found slightly off the surface does not darken.
-float rmAmbientOcclusion(vec3 p, vec3 n) {
-  float base = rmMap(p);
+// the hemisphere, 1 = open. Each tap's distance is measured from `surface`,
+// map()'s value at p: a hit point found slightly off the surface does not
+// darken. A point exactly on a surface that map() does not hold (the analytic
+// ground, RM_GROUND) gives 0: map(p) there is the distance to the objects,
+// and subtracting it would close the hemisphere wherever they are far.
+float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
+  float base = surface;
   float blocked = 0.0;  // weighted share of each tap's distance that is blocked
   float total = 0.0;
   float weight = 1.0;
@@ -183,6 +186,9 @@ float rmAmbientOcclusion(vec3 p, vec3 n) {
   }
   return clamp(1.0 - 1.5 * blocked / total, 0.0, 1.0);
 }
+
+// Ambient occlusion at a hit point p of map()'s surface, with unit normal n.
+float rmAmbientOcclusion(vec3 p, vec3 n) { return rmAmbientOcclusion(p, n, rmMap(p)); }
 
 // Exponential fog: color seen through distance t of fog with the given density.
 vec3 rmFog(vec3 color, vec3 fogColor, float t, float density) {

@@ -106,11 +106,12 @@ vec3 rmBackground(vec3 rd) {
 #endif
 
 // Ambient plus every light at p (normal n, v toward the viewer) on material m;
-// `offset` lifts shadow rays off the surface.
-vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
+// `offset` lifts shadow rays off the surface, and `surface` is map(p), from
+// which ambient occlusion measures (rmAmbientOcclusion: 0 on the ground).
+vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset, float surface) {
   float occlusion = 1.0;
 #ifdef RM_AO
-  occlusion = rmAmbientOcclusion(p, n);
+  occlusion = rmAmbientOcclusion(p, n, surface);
 #endif
   vec3 color = m.albedo * RM_AMBIENT * occlusion * (0.6 + 0.4 * n.y);
   for (int i = 0; i < RM_LIGHT_COUNT; ++i) {
@@ -144,6 +145,11 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
     color += rmShade(p, n, v, m, l, visible);
   }
   return color;
+}
+
+// rmDirectLight at a hit point p of map()'s surface.
+vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset) {
+  return rmDirectLight(p, n, v, m, offset, rmMap(p));
 }
 
 // Colour (linear) seen along the ray ro + t rd; `cone` is the pixel cone
@@ -189,7 +195,9 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
       break;
     }
     vec3 p = ro + rd * m.t;
-    vec3 n = m.ground ? vec3(0.0, 1.0, 0.0) : rmNormal(p, m.tolerance);
+    // The normal, and map(p) from its taps; the ground is exact: no map(p) to subtract.
+    vec4 surface = m.ground ? vec4(0.0, 1.0, 0.0, 0.0) : rmNormalAndDistance(p, m.tolerance);
+    vec3 n = surface.xyz;
 #ifdef RM_VIEW
     rmRecordNormal(n);  // the ground's, which rmNormal never sees
 #endif
@@ -225,7 +233,7 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
 #else
     float diffuse = max(1.0 - mat.reflectivity, 0.0);  // without refraction, glass is opaque
 #endif
-    color += throughput * (mat.emission + diffuse * rmDirectLight(p, n, -rd, mat, offset));
+    color += throughput * (mat.emission + diffuse * rmDirectLight(p, n, -rd, mat, offset, surface.w));
 
 #if RM_REFRACTION > 0
     if (refracted > 0.0) {

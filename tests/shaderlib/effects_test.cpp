@@ -258,6 +258,35 @@ RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }
                         true), open) << "the shadow ray stops where it leaves the box";
 }
 
+// The analytic ground (RM_GROUND) is not in map(): ambient occlusion at a
+// point on it measures the objects' distances from the ground itself. Under
+// ambient light alone, the ground far from a ball resting on it is open (it
+// was black: map() there, the distance to the ball, was subtracted from every
+// tap), and the ground where the ball touches it is darker.
+TEST_F(EglTest, AmbientOcclusionOnTheAnalyticGroundIsOpenAwayFromObjects) {
+  const std::string prelude = R"(#define RM_AO
+#define RM_GROUND 0.0
+#define RM_AMBIENT 1.0
+#define RM_LIGHT_COUNT 1
+uniform vec4 iMouse;
+uniform vec3 iResolution;
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+RmLight light(int i) { return rmDirectionalLight(vec3(0.0, 1.0, 0.0), vec3(0.0)); }
+float map(vec3 p) { return sdSphere(p - vec3(0.0, 0.5, 0.0), 0.5); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
+RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.5)); }
+)";
+  std::string error;
+  // Onto the ground at x = P.x, from above and to the right: clear of the ball.
+  auto got = probe(prelude, "vec4(rmRender(vec3(P.x + 3.0, 3.0, 0.0), normalize(vec3(-1.0, -1.0, 0.0)), 1e-3), 0.0)",
+                   {glm::vec4(5.0f, 0, 0, 0), glm::vec4(0.45f, 0, 0, 0)}, &error);
+  ASSERT_TRUE(got) << error;
+  EXPECT_NEAR((*got)[0].x, 0.5f, 1e-4f) << "albedo 0.5 under the whole ambient light, far from the ball";
+  EXPECT_LT((*got)[1].x, 0.4f) << "under the ball's side, 0.28 below it, occluded";
+  EXPECT_GT((*got)[1].x, 0.05f) << "but not closed";
+}
+
 // RM_COUNT's rmEvaluations counts every map() call the library makes: with
 // every effect on, it equals the count the scene keeps inside map() itself.
 TEST_F(RunTime, CountingCoversEveryCall) {
