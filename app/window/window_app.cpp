@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <ctime>
 #include <iostream>
 #include <map>
@@ -32,6 +33,7 @@
 #include "window/key_codes.h"
 #include "window/panels.h"
 #include "window/take_recorder.h"
+#include "window/tiled_shot.h"
 #include "window/ui.h"
 
 namespace rm {
@@ -100,7 +102,7 @@ class WindowApp {
       // A picture drawn in tiles comes back here between slices of tiles.
       auto busy = [&] {
         return redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
-               (refining() && !builder_.busy()) || shot_requested_;
+               (refining() && !builder_.busy()) || shot_requested_ || (!shots_.empty() && !holds_for_build());
       };
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(0.02);
@@ -117,6 +119,8 @@ class WindowApp {
     glfwHideWindow(window_);
     if (options_.verbose) std::cerr << "raymarching: window hidden at " << steady_ns() << '\n';
     if (take_.recording()) finish_take();  // quitting ends a take as F9 does
+    for (const TiledShot& shot : shots_)
+      std::cerr << "raymarching: screenshot not taken: the window closed before " << shot.path().string() << " was drawn\n";
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
     return kExitOk;
   }
@@ -235,6 +239,7 @@ class WindowApp {
       drawing_.reset();
       budget_.forget();
       buffer_cost_.clear();
+      for (TiledShot& shot : shots_) shot.restart();  // a shot shows the scene as saved
       last_moving_done_ = 0;
       program_drawn_ = false;
       too_slow_ = false;
@@ -357,6 +362,7 @@ class WindowApp {
     // the window: the same picture again, without advancing anything.
     if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height, redraw);
     else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
+    if (!shots_.empty() && !holds_for_build()) continue_shot();
     const bool straight = drawing_ && !holds_for_build() && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -723,6 +729,10 @@ class WindowApp {
       std::cerr << "raymarching: error: no picture to take: the scene has not compiled yet\n";
       return;
     }
+    if (too_slow_) {
+      std::cerr << "raymarching: error: no picture to take: the scene is too slow to draw (--tile-limit)\n";
+      return;
+    }
     const int scale = std::max(1, options_.shot_scale);
     const glm::ivec2 size = glm::ivec2(glm::vec2(inputs_.resolution)) * scale;
     if (std::max(size.x, size.y) > renderer_.max_tile() && !project_.image_source().movable_frag_coord) {
@@ -737,15 +747,36 @@ class WindowApp {
     // A refined picture at rest is the one to keep: it is what `render
     // --samples` with the samples it has gathered draws.
     const bool refined = samples_ > 1 && !drawing_ && picture_.size() == size;
-    const int samples = refined ? samples_ : 1;
-    Image image = refined ? picture_.read() : graph_.render_image(project_, in, size);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const std::string name = options_.scene.stem().string() + "-" + file_timestamp() + "." + options_.shot_format;
-    Metadata metadata = frame_metadata(options_.scene, source_, in, samples);
+    Metadata metadata = frame_metadata(options_.scene, source_, in, refined ? samples_ : 1);
     // Which frame of the take being recorded this is: `render --take` draws it again.
     if (take_.recording()) metadata.emplace_back("raymarching:take_frame", std::to_string(take_.current_frame()));
+    if (refined) {
+      save_shot(picture_.read(), options_.shot_dir / name, metadata);
+    } else if (budget_.budget_ms() > 0 && std::max(size.x, size.y) <= renderer_.max_tile()) {
+      // Drawn in tiles between the window's own (continue_shot), from the
+      // cost per pixel the window measured.
+      const double per_pixel = program_drawn_ ? budget_.full_frame_ms() / (inputs_.resolution.x * inputs_.resolution.y) : 0;
+      shots_.emplace_back(in, size, budget_.budget_ms(), per_pixel, options_.shot_dir / name, std::move(metadata));
+    } else {  // with the budget off, or larger than a tile: at once
+      save_shot(graph_.render_image(project_, in, size), options_.shot_dir / name, metadata);
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+  }
+
+  // Tiles of the oldest screenshot in progress for a slice of the budget;
+  // once it is whole, it is written.
+  void continue_shot() {
+    TiledShot& shot = shots_.front();
+    if (!shot.draw(graph_, project_, budget_.budget_ms())) return;
+    if (options_.verbose) std::cerr << "raymarching: screenshot drawn in " << shot.tiles() << " tiles\n";
+    save_shot(shot.read(), shot.path(), shot.metadata());
+    shots_.pop_front();
+  }
+
+  void save_shot(const Image& image, const fs::path& path, const Metadata& metadata) {
     std::string error;
-    auto written = write_image(options_.shot_dir / name, image, metadata, Overwrite::Never, &error);
+    auto written = write_image(path, image, metadata, Overwrite::Never, &error);
     if (written) std::cout << "screenshot: " << written->string() << std::endl;
     else std::cerr << "raymarching: error: screenshot: " << error << '\n';
   }
@@ -848,6 +879,7 @@ class WindowApp {
   int errors_ = 0;
   int presented_generation_ = -1;
   bool shot_requested_ = false;
+  std::deque<TiledShot> shots_;  // F12's pictures in progress, drawn in tiles, oldest first
   bool quit_ = false;
   bool iconified_ = false;
   InputUse use_;       // what the running program reads

@@ -14,7 +14,9 @@ own file; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
 --refine supersamples, which the screen, F12 and `render --samples` agree
-on (and one sample does not), and a save starts the refinement again.
+on (and one sample does not), and a save starts the refinement again; F12
+on a heavy shader is drawn in tiles, so Q still quits within 1 s (and says the
+shot was not taken), and a shot drawn in tiles matches `render`.
 """
 import os
 import re
@@ -328,6 +330,47 @@ def scaled_then_refined(work):
     proc.wait(timeout=10)
 
 
+def shots_in_tiles(work):
+    # F12 on a shader of half a minute a picture: the shot is drawn in tiles
+    # between the window's own, so Q still quits at once, and says the shot
+    # was not taken rather than leave part of it.
+    scene, proc, err, out = start(work, "heavy_shot.frag", HEAVY, "--shot-dir", work)
+    window = first_frame_window(proc, "heavy_shot.frag", err, timeout=30)
+    check("a heavy window for F12 opens", bool(window))
+    if not window:
+        return
+    xdotool("key", "--window", window, "F12")
+    time.sleep(0.5)
+    status, took = quit_with_q(proc, window)
+    check("Q quits within 1 s while F12's shot of a heavy shader is drawn", status == 0 and took < 1.0,
+          f"status {status}, {took:.3f} s")
+    check("... saying the shot was not taken", "screenshot not taken: the window closed before" in open(err).read(),
+          open(err).read()[-500:])
+    check("... and leaving no picture", not [f for f in os.listdir(work) if f.startswith("heavy_shot-")])
+
+    # A moving scene under a 1000 fps budget: its shot comes in many tiles,
+    # and is the picture `render` draws from the shot's command line.
+    scene, proc, err, out = start(work, "tiled_shot.frag", ANIMATED, "--target-fps", "1000", "--refine", "0",
+                                  "--shot-dir", work, "--no-ui")
+    window = first_frame_window(proc, "tiled_shot.frag", err, timeout=30)
+    check("a moving window for a tiled shot opens", bool(window))
+    if not window:
+        return
+    shot = take_screenshot(window, out)
+    check("F12 while it moves writes a shot", bool(shot))
+    if shot:
+        command = shlex.split(metadata(shot)["ImageDescription"])
+        reference = os.path.join(work, "tiled_reference.png")
+        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
+        diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
+                              capture_output=True, text=True)
+        tiles = re.search(r"screenshot drawn in (\d+) tiles", open(err).read())
+        check("... drawn in tiles", tiles is not None and int(tiles.group(1)) > 1, open(err).read()[-300:])
+        check("... it is what `render` of its command line draws", diff.returncode == 0, diff.stdout)
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
 def refined_still(work):
     scene, proc, err, out = start(work, "edges.frag", EDGES.replace("COLOUR", "0.25"), "--refine", "8", "--no-ui",
                                   "--shot-dir", work)
@@ -379,6 +422,7 @@ if __name__ == "__main__":
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
         scaled_then_refined(work)
+        shots_in_tiles(work)
         refined_still(work)
     finally:
         status = summary()
