@@ -70,6 +70,8 @@ std::vector<Field> fields() {
          return g::box(glm::transpose(rotation(0.7, glm::normalize(dvec3(1, 2, 3)))) * (p - dvec3(0.2, -0.1, 0.3)),
                        {0.6, 0.4, 0.8});
        }},
+      {"RotateAxisWithoutAMatrix", "sdBox(opRotateAxis(p, vec3(1.0, 2.0, 3.0), 0.7), vec3(0.6, 0.4, 0.8))", K::Exact,
+       [](dvec3 p) { return g::box(glm::transpose(rotation(0.7, glm::normalize(dvec3(1, 2, 3)))) * p, {0.6, 0.4, 0.8}); }},
       {"RotateXYZ", "sdBox(opRotate(p, rmRotationX(0.3) * rmRotationY(0.5) * rmRotationZ(0.7)), vec3(0.9, 0.4, 0.6))",
        K::Exact,
        [](dvec3 p) {

@@ -78,6 +78,8 @@ std::vector<Case> cases() {
       {"PolarRepetitionAtTheCentre", "polar(vec2(0.0))", glm::vec4(0.0f)},
       {"RotationAboutAZeroAxis", "vec4(rmRotationAxis(vec3(0.0), 1.0) * vec3(1.0, 2.0, 3.0), 0.0)",
        glm::vec4(1.0f, 2.0f, 3.0f, 0.0f)},
+      {"RotationAboutAZeroAxisWithoutAMatrix", "vec4(opRotateAxis(vec3(1.0, 2.0, 3.0), vec3(0.0), 1.0), 0.0)",
+       glm::vec4(1.0f, 2.0f, 3.0f, 0.0f)},
       {"TwistAndBendOnTheAxis", "vec4(opTwist(vec3(0.0), 5.0), opBend(vec3(0.0), 5.0).x)", glm::vec4(0.0f)},
       {"SafeNormalizeOfZero", "vec4(rmSafeNormalize(vec3(0.0), vec3(0.0, 1.0, 0.0)), 0.0)",
        glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)},
