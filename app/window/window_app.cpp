@@ -362,8 +362,10 @@ class WindowApp {
     // the window: the same picture again, without advancing anything.
     if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height, redraw);
     else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
+    // A screenshot in progress goes first: the picture waits for it, so
+    // that each turn of the loop draws one slice of the budget, not two.
     if (!shots_.empty() && !holds_for_build()) continue_shot();
-    const bool straight = drawing_ && !holds_for_build() && continue_picture();
+    const bool straight = drawing_ && shots_.empty() && !holds_for_build() && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, width, height);
