@@ -110,6 +110,22 @@ def main():
               f"{within * 100:.0f}% | {median:.1f} | {scale:.2f} | {ms(r['still_s'])} | {ms(r['refined_s'])} | "
               f"{ms(r['hidden_s'])} / {ms(r['quit_s'])} |")
 
+    # The share of pictures within budget, the budget on, for a chart: a
+    # Shadertoy export under its shader's name.
+    def label(r):
+        scene = next((s for s in scenes if os.path.basename(s) == r["name"] or s.endswith("/" + r["name"])), "")
+        if scene.endswith(".json"):
+            return json.load(open(scene)).get("Shader", {}).get("info", {}).get("name", r["name"]).replace(",", " ")
+        return r["name"]
+    with open(os.path.join(csv_dir, "budget_share.csv"), "w") as f:
+        f.write("scene,within 33.3 ms,over 33.3 ms\n")
+        for r in rows:
+            if not r["budget_on"]:
+                continue
+            n = len(r["intervals"])
+            within = 100.0 * sum(1 for i in r["intervals"] if i <= BUDGET_MS) / n if n else 0.0
+            f.write(f"{label(r)},{within:.0f},{100 - within:.0f}\n")
+
     # Shadertoy exports: where each comes from (the site's id, name and author).
     for scene in scenes:
         if scene.endswith(".json"):
