@@ -525,7 +525,7 @@ class WindowApp {
         std::cerr << "raymarching: first draw of generation " << project_.generation() << ": a " << tile.z << "x"
                   << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";
       program_drawn_ = true;
-      if (!first_draw && replan()) return false;
+      if (!first_draw && replan(ms)) return false;
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
     if (p.plan.done()) finish_picture(straight);
     return straight;
@@ -584,11 +584,16 @@ class WindowApp {
   // the start), and a heavy one would take seconds in tiles. Once a tile
   // has measured it, a picture that would take more than twice the budget
   // is dropped, and the next is drawn at the scale that cost asks for.
-  // (Not the first tile of a program: the driver finishes compiling in it.)
-  bool replan() {
+  // (Not the first tile of a program: the driver finishes compiling in it.
+  // Nor a tile of under a quarter of the budget, `tile_ms`: a small tile's
+  // time is mostly the draw's own, and the default scene's 16x16 tiles said
+  // 5.5 s for a picture of 120 ms.)
+  bool replan(double tile_ms) {
     const auto& p = *drawing_;
     const double budget = budget_.budget_ms();
-    if (p.resting || budget <= 0 || budget_.full_frame_ms() > 0 || project_.has_feedback() || p.plan.done()) return false;
+    if (p.resting || budget <= 0 || budget_.full_frame_ms() > 0 || project_.has_feedback() || p.plan.done() ||
+        tile_ms < budget / 4)
+      return false;
     const double whole_ms = p.plan.per_pixel_ms() * p.size.x * p.size.y;
     if (whole_ms <= 2 * budget) return false;
     budget_.measured(p.scale, whole_ms);

@@ -296,6 +296,23 @@ def keeps_drawing_while_building(work):
     check("and Q quits", proc.wait(timeout=10) == 0)
 
 
+def light_first_picture_kept(work):
+    # A light animated scene within the 30 fps budget: its first picture is
+    # not dropped for a smaller one. A 16x16 tile's time is mostly the draw's
+    # own, and once said such a scene would take most of a second.
+    scene, proc, err, _ = start(work, "light_animated.frag", ANIMATED)
+    window = first_frame_window(proc, "light_animated.frag", err, timeout=30)
+    check("a light animated window opens", bool(window))
+    if not window:
+        return
+    first = wait_for(lambda: re.search(r"picture (\d+)x(\d+) scale ([0-9.e-]+)", open(err).read()), timeout=10)
+    check("its first picture is drawn at full size, not dropped for a smaller one",
+          first is not None and float(first.group(3)) == 1.0 and "drawn again at scale" not in open(err).read(),
+          open(err).read()[-500:])
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
 def scaled_then_refined(work):
     # A budget of 1000 fps: even this light scene is over it at full size.
     scene, proc, err, out = start(work, "animated.frag", ANIMATED, "--target-fps", "1000", "--shot-dir", work, "--no-ui")
@@ -421,6 +438,7 @@ if __name__ == "__main__":
         too_slow_session(work)
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
+        light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
         refined_still(work)
