@@ -102,14 +102,20 @@ void mainImage(out vec4 c, in vec2 f) {
 """
 
 
-def start(work, name, source, *args):
+def start(work, name, source, what, *args, timeout=30):
+    """Writes `source` to work/name and opens it in a 320x180 window with -v;
+    checks that the window opens (`what`) and shows a first frame. Returns
+    the scene's path, the process, its stderr and stdout files, and the
+    window (None if it did not open)."""
     scene = os.path.join(work, name)
     with open(scene, "w") as f:
         f.write(source)
     err = os.path.join(work, name + ".stderr")
     out = os.path.join(work, name + ".stdout")
     proc = open_window([BINARY, scene, "--size", "320x180", "-v", *args], out, err, work)
-    return scene, proc, err, out
+    window = first_frame_window(proc, name, err, timeout=timeout)
+    check(what, bool(window), "" if window else open(err).read()[-500:])
+    return scene, proc, err, out, window
 
 
 def quit_with_q(proc, window):
@@ -126,9 +132,8 @@ def quit_with_q(proc, window):
 
 
 def heavy_session(work):
-    scene, proc, err, _ = start(work, "heavy.frag", HEAVY)
-    window = first_frame_window(proc, "heavy.frag", err, timeout=30)
-    check("a heavy shader's window opens and shows its first tiles", bool(window), open(err).read() if not window else "")
+    scene, proc, err, _, window = start(work, "heavy.frag", HEAVY,
+                                        "a heavy shader's window opens and shows its first tiles")
     if not window:
         return
     # Tiles keep coming: the title says so, and the picture is not finished.
@@ -145,9 +150,8 @@ def heavy_session(work):
 def heavy_buffer_scaled(work):
     with open(os.path.join(work, "heavy_buffer.frag"), "w") as f:
         f.write(HEAVY_BUFFER)
-    scene, proc, err, _ = start(work, "buffered.frag", HEAVY_BUFFER_IMAGE)
-    window = first_frame_window(proc, "buffered.frag", err, timeout=30)
-    check("a project with a heavy buffer opens", bool(window), open(err).read()[-500:])
+    scene, proc, err, _, window = start(work, "buffered.frag", HEAVY_BUFFER_IMAGE,
+                                        "a project with a heavy buffer opens")
     if not window:
         return
     first = wait_for(lambda: re.search(r"picture (\d+)x\d+ scale ([0-9.e-]+) in \d+ tiles?, .*its buffers in (\d+) tiles",
@@ -167,10 +171,9 @@ def heavy_buffer_scaled(work):
 def too_slow_buffer(work):
     with open(os.path.join(work, "runaway_buffer.frag"), "w") as f:
         f.write(HEAVY_BUFFER)
-    scene, proc, err, _ = start(work, "runaway.frag", HEAVY_BUFFER_IMAGE.replace("heavy_buffer", "runaway_buffer"),
-                                "--tile-limit", "0.02")
-    window = first_frame_window(proc, "runaway.frag", err, timeout=30)
-    check("a project with a runaway buffer opens", bool(window))
+    scene, proc, err, _, window = start(work, "runaway.frag",
+                                        HEAVY_BUFFER_IMAGE.replace("heavy_buffer", "runaway_buffer"),
+                                        "a project with a runaway buffer opens", "--tile-limit", "0.02")
     if not window:
         return
     buffer = os.path.join(work, "runaway_buffer.frag")
@@ -183,9 +186,9 @@ def too_slow_buffer(work):
 
 
 def heavy_animated_replanned(work):
-    scene, proc, err, _ = start(work, "heavy_animated.frag", HEAVY.replace("float a = 0.0;", "float a = iTime;"))
-    window = first_frame_window(proc, "heavy_animated.frag", err, timeout=30)
-    check("a heavy animated shader's window opens", bool(window))
+    scene, proc, err, _, window = start(work, "heavy_animated.frag",
+                                        HEAVY.replace("float a = 0.0;", "float a = iTime;"),
+                                        "a heavy animated shader's window opens")
     if not window:
         return
     check("once a tile has measured it, its first picture is dropped for one at a lower scale",
@@ -198,10 +201,8 @@ def tiled_feedback(work):
     # A budget of 1000 fps: the feedback buffer is drawn in tiles, frame after frame.
     with open(os.path.join(work, "feedback_buffer.frag"), "w") as f:
         f.write(FEEDBACK_BUFFER)
-    scene, proc, err, out = start(work, "feedback.frag", FEEDBACK_IMAGE, "--target-fps", "1000", "--shot-dir", work,
-                                  "--no-ui")
-    window = first_frame_window(proc, "feedback.frag", err, timeout=30)
-    check("a feedback project's window opens", bool(window))
+    scene, proc, err, out, window = start(work, "feedback.frag", FEEDBACK_IMAGE, "a feedback project's window opens",
+                                          "--target-fps", "1000", "--shot-dir", work, "--no-ui")
     if not window:
         return
     tiled = wait_for(lambda: len(re.findall(r"picture 320x180 scale 1 in .*, its buffers in (\d+) tiles",
@@ -224,9 +225,7 @@ def tiled_feedback(work):
 
 
 def heavy_fixed_by_a_save(work):
-    scene, proc, err, _ = start(work, "fixme.frag", HEAVY)
-    window = first_frame_window(proc, "fixme.frag", err, timeout=30)
-    check("a second heavy window opens", bool(window))
+    scene, proc, err, _, window = start(work, "fixme.frag", HEAVY, "a second heavy window opens")
     if not window:
         return
     time.sleep(1.0)
@@ -243,9 +242,8 @@ def heavy_fixed_by_a_save(work):
 
 
 def too_slow_session(work):
-    scene, proc, err, _ = start(work, "slow.frag", HEAVY, "--tile-limit", "0.02")
-    window = first_frame_window(proc, "slow.frag", err, timeout=30)
-    check("a window with --tile-limit opens", bool(window))
+    scene, proc, err, _, window = start(work, "slow.frag", HEAVY, "a window with --tile-limit opens",
+                                        "--tile-limit", "0.02")
     if not window:
         return
     line = wait_for(lambda: re.search(re.escape(scene) + r": error: too slow: a 16x16 tile took [0-9.]+ s "
@@ -265,9 +263,8 @@ def too_slow_session(work):
 
 def keeps_drawing_while_building(work):
     seed = f"{time.time_ns() % 999983 / 999983:.6f}"
-    scene, proc, err, _ = start(work, "building.frag", SLOW_TO_BUILD.replace("SEED", seed), "--no-ui")
-    window = first_frame_window(proc, "building.frag", err, timeout=60)
-    check("a window that is slow to compile opens", bool(window))
+    scene, proc, err, _, window = start(work, "building.frag", SLOW_TO_BUILD.replace("SEED", seed),
+                                        "a window that is slow to compile opens", "--no-ui", timeout=60)
     if not window:
         return
     time.sleep(0.5)
@@ -300,9 +297,7 @@ def light_first_picture_kept(work):
     # A light animated scene within the 30 fps budget: its first picture is
     # not dropped for a smaller one. A 16x16 tile's time is mostly the draw's
     # own, and once said such a scene would take most of a second.
-    scene, proc, err, _ = start(work, "light_animated.frag", ANIMATED)
-    window = first_frame_window(proc, "light_animated.frag", err, timeout=30)
-    check("a light animated window opens", bool(window))
+    scene, proc, err, _, window = start(work, "light_animated.frag", ANIMATED, "a light animated window opens")
     if not window:
         return
     first = wait_for(lambda: re.search(r"picture (\d+)x(\d+) scale ([0-9.e-]+)", open(err).read()), timeout=10)
@@ -315,9 +310,8 @@ def light_first_picture_kept(work):
 
 def scaled_then_refined(work):
     # A budget of 1000 fps: even this light scene is over it at full size.
-    scene, proc, err, out = start(work, "animated.frag", ANIMATED, "--target-fps", "1000", "--shot-dir", work, "--no-ui")
-    window = first_frame_window(proc, "animated.frag", err, timeout=30)
-    check("an animated window opens", bool(window))
+    scene, proc, err, out, window = start(work, "animated.frag", ANIMATED, "an animated window opens",
+                                          "--target-fps", "1000", "--shot-dir", work, "--no-ui")
     if not window:
         return
     scaled = wait_for(lambda: re.search(r"picture (\d+)x(\d+) scale 0\.\d+ in 1 tile", open(err).read()), timeout=10)
@@ -351,9 +345,8 @@ def shots_in_tiles(work):
     # F12 on a shader of half a minute a picture: the shot is drawn in tiles
     # between the window's own, so Q still quits at once, and says the shot
     # was not taken rather than leave part of it.
-    scene, proc, err, out = start(work, "heavy_shot.frag", HEAVY, "--shot-dir", work)
-    window = first_frame_window(proc, "heavy_shot.frag", err, timeout=30)
-    check("a heavy window for F12 opens", bool(window))
+    scene, proc, err, out, window = start(work, "heavy_shot.frag", HEAVY, "a heavy window for F12 opens",
+                                          "--shot-dir", work)
     if not window:
         return
     xdotool("key", "--window", window, "F12")
@@ -367,10 +360,8 @@ def shots_in_tiles(work):
 
     # A moving scene under a 1000 fps budget: its shot comes in many tiles,
     # and is the picture `render` draws from the shot's command line.
-    scene, proc, err, out = start(work, "tiled_shot.frag", ANIMATED, "--target-fps", "1000", "--refine", "0",
-                                  "--shot-dir", work, "--no-ui")
-    window = first_frame_window(proc, "tiled_shot.frag", err, timeout=30)
-    check("a moving window for a tiled shot opens", bool(window))
+    scene, proc, err, out, window = start(work, "tiled_shot.frag", ANIMATED, "a moving window for a tiled shot opens",
+                                          "--target-fps", "1000", "--refine", "0", "--shot-dir", work, "--no-ui")
     if not window:
         return
     shot = take_screenshot(window, out)
@@ -389,10 +380,9 @@ def shots_in_tiles(work):
 
 
 def refined_still(work):
-    scene, proc, err, out = start(work, "edges.frag", EDGES.replace("COLOUR", "0.25"), "--refine", "8", "--no-ui",
-                                  "--shot-dir", work)
-    window = first_frame_window(proc, "edges.frag", err, timeout=30)
-    check("a static window with --refine 8 opens", bool(window))
+    scene, proc, err, out, window = start(work, "edges.frag", EDGES.replace("COLOUR", "0.25"),
+                                          "a static window with --refine 8 opens", "--refine", "8", "--no-ui",
+                                          "--shot-dir", work)
     if not window:
         return
     check("at rest, the picture gathers supersamples up to 8",
