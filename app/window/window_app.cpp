@@ -439,8 +439,7 @@ class WindowApp {
     // Tiles of one budget, from the cost per pixel the last pictures
     // measured (unknown after a reload): a picture the controller sized to
     // fit (under kHoldAt of it, which leaves room for the present) is one tile.
-    const double per_pixel =
-        !budget_on ? 1e-12 : program_drawn_ ? budget_.full_frame_ms() / (double(width) * height) : 0.0;
+    const double per_pixel = !budget_on ? 1e-12 : measured_per_pixel_ms({width, height});
     const double tile_ms = budget_on ? budget_.budget_ms() : 1e12;
     drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
                              (steady_ns() - start) / 1e6});
@@ -457,6 +456,16 @@ class WindowApp {
     graph_.keyboard().end_frame();
     if (!clock_.paused()) clock_.next_frame();
   }
+
+  // What a pixel of the current program costs at full size, as the budget
+  // measured it for a window of `window` pixels; 0 before its first draw
+  // (a tile plan then starts with a probe).
+  double measured_per_pixel_ms(glm::ivec2 window) const {
+    return program_drawn_ ? budget_.full_frame_ms() / (double(window.x) * window.y) : 0.0;
+  }
+
+  // A probe-sized tile: the one the watchdog (--tile-limit) times.
+  static bool smallest_tile(glm::ivec4 tile) { return tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe; }
 
   // The next frame's inputs for a picture of `window` at `scale` per axis:
   // its resolution, and the mouse's pixels in it.
@@ -515,7 +524,7 @@ class WindowApp {
       ++p.tiles;
       if (!straight) picture_.mark_drawn();
       // The first draw of a program also compiles it in the driver: not a measure of the shader.
-      const bool probe = tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe;
+      const bool probe = smallest_tile(tile);
       if (probe && program_drawn_ && ms > options_.tile_limit_s * 1000.0) {
         report_too_slow(project_.passes().back().file, tile, ms);
         return false;
@@ -559,8 +568,7 @@ class WindowApp {
       graph_.draw_pass_region(project_, index, p.inputs, tile);
       glFinish();  // the tile is done: input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
-      const bool probe = tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe;
-      if (probe && !first_of_pass && ms > options_.tile_limit_s * 1000.0) {
+      if (smallest_tile(tile) && !first_of_pass && ms > options_.tile_limit_s * 1000.0) {
         report_too_slow(file, tile, ms);
         return true;
       }
@@ -763,8 +771,8 @@ class WindowApp {
     } else if (budget_.budget_ms() > 0 && std::max(size.x, size.y) <= renderer_.max_tile()) {
       // Drawn in tiles between the window's own (continue_shot), from the
       // cost per pixel the window measured.
-      const double per_pixel = program_drawn_ ? budget_.full_frame_ms() / (inputs_.resolution.x * inputs_.resolution.y) : 0;
-      shots_.emplace_back(in, size, budget_.budget_ms(), per_pixel, options_.shot_dir / name, std::move(metadata));
+      shots_.emplace_back(in, size, budget_.budget_ms(), measured_per_pixel_ms(glm::ivec2(inputs_.resolution)),
+                          options_.shot_dir / name, std::move(metadata));
     } else {  // with the budget off, or larger than a tile: at once
       save_shot(graph_.render_image(project_, in, size), options_.shot_dir / name, metadata);
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
