@@ -27,7 +27,7 @@ vec3 background(vec3 rd) { return vec3(0.05, 0.07, 0.12); }
 // cube: map() never steps past the border by more than the gap every cube
 // leaves (half-period 0.9 minus the radius 0.7).
 float mapCell(vec3 q, vec3 cell) {
-  vec3 h = rmHash3(cell);
+  vec3 h = rmHash3(ivec3(cell));
   return sdRoundBox(opRotateAxis(q, h - 0.5, iTime * (0.3 + h.x)), vec3(0.3 + 0.1 * h.y), 0.05);
 }
 

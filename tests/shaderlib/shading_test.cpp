@@ -3,6 +3,7 @@
 // reflection, Fresnel, Beer, Blinn-Phong, shadows, AO, spot cones, mouse light.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -219,6 +220,46 @@ TEST_F(Texture, HashesTreatMinusZeroAsZero) {
                         "length(rmHash3(vec3(round(P.w))) - rmHash3(vec3(round(Q.w)))))",
                         minus_zero, zero);
   EXPECT_EQ(got[0], glm::vec4(0.0f));
+}
+
+// The integer lattice's hash (pcg3d) spreads a 16x16x16 block of cells,
+// negative ones included, evenly over [0, 1) in each of its three values,
+// with no correlation between the values or between neighbouring cells: an
+// index-like hash (fract(cell * k)) fails the neighbours, one output reused
+// fails the pairs.
+TEST_F(Texture, CellHashIsUniformAndUncorrelated) {
+  std::vector<glm::vec4> cells;
+  for (int z = -8; z < 8; ++z)
+    for (int y = -8; y < 8; ++y)
+      for (int x = -8; x < 8; ++x) cells.emplace_back(x, y, z, 0);
+  const auto got = eval("#include <rm/texture.glsl>\n", "vec4(rmHash3(ivec3(P.xyz)), 0.0)", cells);
+  ASSERT_EQ(got.size(), cells.size());
+  auto correlation = [&](auto a, auto b, int skip) {
+    double sa = 0, sb = 0, sab = 0, saa = 0, sbb = 0;
+    const double n = static_cast<double>(got.size() - skip);
+    for (size_t i = 0; i + skip < got.size(); ++i) {
+      const double u = a(got[i]), v = b(got[i + skip]);
+      sa += u, sb += v, sab += u * v, saa += u * u, sbb += v * v;
+    }
+    return (sab / n - sa / n * sb / n) / std::sqrt((saa / n - sa / n * sa / n) * (sbb / n - sb / n * sb / n));
+  };
+  for (int c = 0; c < 3; ++c) {
+    std::array<int, 8> bins{};
+    double sum = 0;
+    for (const glm::vec4& v : got) {
+      ASSERT_GE(v[c], 0.0f);
+      ASSERT_LT(v[c], 1.0f);
+      sum += v[c];
+      ++bins[static_cast<size_t>(v[c] * 8.0f)];
+    }
+    EXPECT_NEAR(sum / got.size(), 0.5, 0.02) << "value " << c;  // 4 sigma for 4096 cells
+    for (int b : bins) EXPECT_NEAR(b, 512, 100) << "value " << c;  // 5 sigma
+    auto value = [c](const glm::vec4& v) { return double(v[c]); };
+    auto next = [c](const glm::vec4& v) { return double(v[(c + 1) % 3]); };
+    EXPECT_LT(std::abs(correlation(value, next, 0)), 0.06) << "values " << c << " and " << (c + 1) % 3;
+    for (int skip : {1, 16, 256})  // the neighbour along x, y and z
+      EXPECT_LT(std::abs(correlation(value, value, skip)), 0.06) << "value " << c << ", cells " << skip << " apart";
+  }
 }
 
 }  // namespace
