@@ -201,7 +201,7 @@ class WindowApp {
       loaded(project_.reload());
       return;
     }
-    if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << '\n';
+    if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
     // Each new program is drawn once into its pass's format, with what the
     // pass reads now (a new pass, or a new image, reads nothing yet).
     builder_.start([this, states = graph_.pass_states(project_)] {
@@ -257,7 +257,7 @@ class WindowApp {
         std::cerr << "; preprocess " << t.preprocess << " ms, glslang " << t.validate << " ms, driver compile+link "
                   << t.driver << " ms, warm-up " << t.warm << " ms)";
       }
-      std::cerr << '\n';
+      std::cerr << " at " << steady_ns() << '\n';
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
     }
     update_title(true);

@@ -269,7 +269,7 @@ def keeps_drawing_while_building(work):
         return
     time.sleep(0.5)
     save_by_rename(scene, SLOW_TO_BUILD.replace("SEED", seed + "1"))
-    built = wait_for(lambda: re.search(r"building generation 2\n(.*?)reload ok generation 2 .*warm-up ([0-9.]+) ms",
+    built = wait_for(lambda: re.search(r"building generation 2 at \d+\n(.*?)reload ok generation 2 .*warm-up ([0-9.]+) ms",
                                        open(err).read(), re.S), timeout=60)
     check("a save is built while the window runs", bool(built), open(err).read()[-500:])
     if built:
@@ -282,7 +282,7 @@ def keeps_drawing_while_building(work):
     # in about 2 s): the window keeps drawing the last good program meanwhile.
     bomb = "float x = 1.0;\n#define A0 x+x\n" + "".join(f"#define A{i} A{i - 1}+A{i - 1}\n" for i in range(1, 26))
     save_by_rename(scene, bomb + "void mainImage(out vec4 c, in vec2 f) { c = vec4(A25); }\n")
-    failed = wait_for(lambda: re.search(r"building generation 3\n(.*?)(building\.frag(?::\d+:\d+)?: error: [^\n]*)",
+    failed = wait_for(lambda: re.search(r"building generation 3 at \d+\n(.*?)(building\.frag(?::\d+:\d+)?: error: [^\n]*)",
                                         open(err).read(), re.S), timeout=30)
     check("a macro bomb is reported as an error in its file", bool(failed), open(err).read()[-500:])
     if failed:
