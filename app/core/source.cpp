@@ -272,13 +272,32 @@ class Preprocessor {
       for (const std::string& name : options_.forced_includes)
         if (!include(path, file, 0, IncludeDirective{false, name, 0})) break;
     for_each_line(text, [&](std::string_view line, int line_no) { return take_line(path, file, line, line_no); });
+    in_dropped_define_ = false;  // a file's last line does not continue into the next file
     stack_.pop_back();
+  }
+
+  // Whether `line` is a #define of a macro the options set (a -D) or forbid.
+  bool defines_overridden_macro(std::string_view line) const {
+    auto d = lexing::directive(line);
+    if (!d || d->name != "define") return false;
+    size_t end = 0;
+    while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
+    const std::string_view name = d->rest.substr(0, end);
+    return std::any_of(options_.defines.begin(), options_.defines.end(), [&](const Define& x) { return x.name == name; }) ||
+           std::find(options_.undefines.begin(), options_.undefines.end(), name) != options_.undefines.end();
   }
 
   // One line of `file`: kept for the body, or a directive the host handles.
   // false stops reading the file (after an error).
   bool take_line(const fs::path& path, int file, std::string_view line, int line_no) {
     if (!out_.ok()) return false;
+    // A #define the command line overrides is read as a blank line, with
+    // the lines its backslashes continue it onto: lines keep their numbers.
+    if (in_dropped_define_ || defines_overridden_macro(line)) {
+      in_dropped_define_ = !line.empty() && line.back() == '\\';
+      add_body_line("", Origin{file, line_no});
+      return true;
+    }
     if (file == 0 && !version_ && (version_ = parse_version(line))) {
       version_origin_ = Origin{file, line_no};
       return true;  // re-emitted at the top by assemble()
@@ -453,6 +472,7 @@ class Preprocessor {
   std::optional<VersionInfo> version_;
   Origin version_origin_;
   int host_lines_ = 0;
+  bool in_dropped_define_ = false;  // the last line was a dropped #define ending in a backslash
 };
 
 }  // namespace

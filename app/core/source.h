@@ -45,6 +45,11 @@ struct SourceOptions {
   std::vector<fs::path> include_dirs;  // -I, searched after the including file's dir
   fs::path shaderlib_dir;              // root that holds rm/, for <rm/...>
   std::vector<Define> defines;         // -D, placed right after #version
+  // Macros the shader's files may not define: their #define lines are read
+  // as blank lines. Every -D's name is one of them as well, so that the
+  // command line (and a control of the window) wins over a scene's own
+  // #define, where GLSL would report a redefinition.
+  std::vector<std::string> undefines;
   // Included before the scene's first line, as a compiler's -include: the
   // scene's own lines keep their numbers (a Shadertoy JSON's Common).
   std::vector<std::string> forced_includes;

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <tuple>
 
 #include "core/capture.h"
@@ -16,7 +15,6 @@
 #include "core/project.h"
 #include "core/check.h"
 #include "core/diagnostics.h"
-#include "core/lexing.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "core/views.h"
@@ -72,30 +70,6 @@ std::vector<Setting> sweep() {
   return out;
 }
 
-// Reads the scene with its own #defines of `names` blanked (lines keep their
-// numbers), so that a -D can set knobs the scene sets itself.
-FileSystem scene_without_defines(const fs::path& scene, std::vector<std::string> names) {
-  FileSystem disk = disk_file_system();
-  FileSystem files = disk;
-  const fs::path target = fs::weakly_canonical(scene);
-  files.read = [disk, target, names](const fs::path& path, std::string* error) -> std::optional<std::string> {
-    auto text = disk.read(path, error);
-    if (!text || names.empty() || fs::weakly_canonical(path) != target) return text;
-    std::istringstream in(*text);
-    std::string line, out;
-    while (std::getline(in, line)) {
-      if (auto d = lexing::directive(line); d && d->name == "define") {
-        size_t end = 0;
-        while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
-        if (std::find(names.begin(), names.end(), d->rest.substr(0, end)) != names.end()) line.clear();
-      }
-      out += line + '\n';
-    }
-    return out;
-  };
-  return files;
-}
-
 struct Renders {
   Image color;   // the picture
   Image data;    // RM_VIEW_DATA: (map() calls, primary t or -1, bad, 1)
@@ -117,7 +91,7 @@ class Bench {
   // are the same program.
   std::string expanded(const Setting& setting) {
     SourceOptions options = options_for(setting);
-    const Source source = preprocess(req_.scene, options, files_for(setting));
+    const Source source = preprocess(req_.scene, options);
     Diagnostics diags;
     return expand_preprocessor(source, &diags).value_or("");
   }
@@ -126,8 +100,8 @@ class Bench {
   // when given (the reference's depth comes from one centred sample).
   std::optional<Renders> render(const Setting& setting, std::string* error, const Setting* data_setting = nullptr) {
     const Setting& d = data_setting ? *data_setting : setting;
-    Project color(req_.scene, options_for(setting), files_for(setting));
-    Project data(req_.scene, with_view(options_for(d), View::Data), files_for(d));
+    Project color(req_.scene, options_for(setting));
+    Project data(req_.scene, with_view(options_for(d), View::Data));
     if (color.reload() != ReloadStatus::Swapped || data.reload() != ReloadStatus::Swapped) {
       *error = join(color.diagnostics().empty() ? data.diagnostics() : color.diagnostics());
       return std::nullopt;
@@ -144,16 +118,13 @@ class Bench {
   }
 
  private:
+  // The scene's own #defines of the knobs set here give way to them (a -D
+  // does that by itself), and so do those of the macros the setting strips.
   SourceOptions options_for(const Setting& setting) const {
     SourceOptions options = req_.source;
-    for (const Define& d : setting.defines) options.defines.push_back(d);
+    for (const Define& d : setting.defines) options.defines = with_define(options.defines, d.name, d.value.empty() ? "1" : d.value);
+    options.undefines.insert(options.undefines.end(), setting.strip.begin(), setting.strip.end());
     return options;
-  }
-
-  FileSystem files_for(const Setting& setting) const {
-    std::vector<std::string> names = setting.strip;
-    for (const Define& d : setting.defines) names.push_back(d.name);
-    return scene_without_defines(req_.scene, names);
   }
 
   // The time of one frame, the median of kFrames after kWarmUp (the first draws

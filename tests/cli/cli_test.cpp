@@ -135,6 +135,20 @@ TEST_F(Cli, DefinesAndIncludeDirsWorkAsInACompiler) {
   EXPECT_EQ(run("check " + scene + " -DLEVEL=2.0").status, 1);              // include not found
 }
 
+// A -D of a knob the example sets itself (cubes: `#define RM_MAX_STEPS 200`)
+// takes its place, as a control of the window does, instead of a
+// redefinition error; the picture is the knob's.
+TEST_F(Cli, DefineOverridesAnExamplesOwnKnob) {
+  const std::string cubes = std::string(RM_TEST_DATA_DIR) + "/../../examples/cubes.frag";
+  const std::string plain = (dir_ / "plain.png").string(), few = (dir_ / "few.png").string();
+  const test::Outcome shipped = run("render " + cubes + " --size 64x36 --time 1 -o " + plain);
+  ASSERT_EQ(shipped.status, 0) << shipped.err;
+  const test::Outcome overridden = run("render " + cubes + " --size 64x36 --time 1 -D RM_MAX_STEPS=4 -o " + few);
+  ASSERT_EQ(overridden.status, 0) << overridden.err;
+  EXPECT_EQ(overridden.err, "");
+  EXPECT_NE(test::read_file(plain), test::read_file(few));  // 4 steps reach fewer cubes
+}
+
 // `check -E` prints what the compiler sees, as a compiler's -E does: macros
 // (including -D ones) expanded, branches not taken gone.
 // -E marks where lines come from as cpp does, drops blank runs, and takes a

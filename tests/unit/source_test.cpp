@@ -149,6 +149,47 @@ TEST(Source, DefinesFollowTheVersionLineAndMapToTheCommandLine) {
   EXPECT_EQ(origin_of(s, "#define FAST 1"), std::make_pair(std::string("<command-line>"), 2));
 }
 
+// GLSL makes a second #define of a macro an error, so -D STEPS=32 on a scene
+// that says `#define STEPS 200` would only report a redefinition. The command
+// line wins instead: the scene's #define (with the lines its backslash
+// continues it onto) reads as blank lines, and every other line keeps its
+// number.
+TEST(Source, ADefineOnTheCommandLineTakesThePlaceOfTheScenesOwn) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "#define STEPS 200\n#define WIDE \\\n  2.0\n#define KEEP 3\n"
+             "void mainImage(out vec4 c, in vec2 f) { c = vec4(STEPS + KEEP, WIDE, 0.0, 1.0); }\n"
+             "float broken = ;\n");
+  SourceOptions opts;
+  opts.defines = {{"STEPS", "32"}, {"WIDE", "1.0"}};
+  Source s = preprocess(dir / "scene.frag", opts);
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.text.find("#define STEPS 200"), std::string::npos);
+  EXPECT_EQ(s.text.find("2.0"), std::string::npos);
+  EXPECT_NE(s.text.find("#define KEEP 3"), std::string::npos);
+  EXPECT_EQ(origin_of(s, "float broken").second, 6);
+  const Diagnostics diags = validate(s);
+  ASSERT_EQ(count_errors(diags), 1) << join(diags);  // no redefinition: only the broken line
+  EXPECT_EQ(diags[0].path, (dir / "scene.frag").string());
+  EXPECT_EQ(diags[0].line, 6);
+}
+
+// `undefines` drops a scene's #define without setting the macro (the
+// accuracy report's textbook loop runs a scene without its bounds).
+TEST(Source, UndefinesDropTheScenesDefinitionWithoutSettingIt) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "#define RM_BOUNDING_SPHERE vec4(1.0)\n#ifdef RM_BOUNDING_SPHERE\nfloat bounded;\n#endif\n" +
+                 std::string(kMain));
+  SourceOptions opts;
+  opts.undefines = {"RM_BOUNDING_SPHERE"};
+  Source s = preprocess(dir / "scene.frag", opts);
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.text.find("#define RM_BOUNDING_SPHERE"), std::string::npos);
+  EXPECT_EQ(origin_of(s, "float bounded").second, 3);
+  EXPECT_TRUE(validate(s).empty());
+}
+
 TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
   TempDir dir;
   write_file(dir / "scene.frag",
