@@ -276,6 +276,16 @@ class Preprocessor {
     stack_.pop_back();
   }
 
+  bool defined_on_command_line(std::string_view name) const {
+    return std::any_of(options_.defines.begin(), options_.defines.end(), [&](const Define& d) { return d.name == name; });
+  }
+
+  // Shadertoy's HW_PERFORMANCE: 1, as on a desktop, unless a -D sets it (0 is
+  // what a phone gets; shaders use it to choose their antialiasing).
+  std::string hw_performance_define() const {
+    return defined_on_command_line("HW_PERFORMANCE") ? std::string() : "#define HW_PERFORMANCE 1\n";
+  }
+
   // Whether `line` is a #define of a macro the options set (a -D) or forbid.
   bool defines_overridden_macro(std::string_view line) const {
     auto d = lexing::directive(line);
@@ -283,7 +293,7 @@ class Preprocessor {
     size_t end = 0;
     while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
     const std::string_view name = d->rest.substr(0, end);
-    return std::any_of(options_.defines.begin(), options_.defines.end(), [&](const Define& x) { return x.name == name; }) ||
+    return defined_on_command_line(name) ||
            std::find(options_.undefines.begin(), options_.undefines.end(), name) != options_.undefines.end();
   }
 
@@ -405,7 +415,7 @@ class Preprocessor {
     // Real Shadertoy shaders carry a main() for other hosts in an inactive
     // #ifdef: with both, the kind is decided on what the compiler would see.
     if (has_main && has_main_image) {
-      std::string defined = "#version 450 core\n#define HW_PERFORMANCE 1\n";
+      std::string defined = "#version 450 core\n" + hw_performance_define();
       for (const auto& d : options_.defines) defined += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
       if (auto active = active_code(defined + body_)) {
         code = std::move(*active);
@@ -438,7 +448,7 @@ class Preprocessor {
         ? "#version " + std::to_string(version_->number) + (version_->profile.empty() ? "" : " " + version_->profile)
         : "#version 450 core";
     emit(out_.version_line, keep_version ? version_origin_ : Origin{kHostFile, ++host_lines_});
-    emit("#define HW_PERFORMANCE 1", Origin{kHostFile, ++host_lines_});
+    if (const std::string line = hw_performance_define(); !line.empty()) emit_host(line);
     int define_index = 0;
     for (const auto& d : options_.defines)
       emit("#define " + d.name + " " + (d.value.empty() ? "1" : d.value), Origin{kCommandLineFile, ++define_index});

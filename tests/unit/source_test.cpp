@@ -174,6 +174,27 @@ TEST(Source, ADefineOnTheCommandLineTakesThePlaceOfTheScenesOwn) {
   EXPECT_EQ(diags[0].line, 6);
 }
 
+// The host's HW_PERFORMANCE (1, as Shadertoy on a desktop) gives way to a
+// -D, so that a shader can be seen as a phone runs it, with no redefinition.
+TEST(Source, HwPerformanceIsOneUnlessTheCommandLineSetsIt) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "void mainImage(out vec4 c, in vec2 f) { c = vec4(HW_PERFORMANCE); }\n"
+             "#if HW_PERFORMANCE == 0\nfloat phone;\n#endif\n");
+  SourceOptions phone;
+  phone.defines = {{"HW_PERFORMANCE", "0"}};
+  const Source desktop_source = preprocess(dir / "scene.frag", {}), phone_source = preprocess(dir / "scene.frag", phone);
+  ASSERT_TRUE(desktop_source.ok() && phone_source.ok());
+  EXPECT_NE(desktop_source.text.find("#define HW_PERFORMANCE 1"), std::string::npos);
+  EXPECT_EQ(phone_source.text.find("#define HW_PERFORMANCE 1"), std::string::npos);
+  EXPECT_TRUE(validate(phone_source).empty()) << join(validate(phone_source));
+  std::string desktop_active, phone_active;
+  validate(desktop_source, &desktop_active);
+  validate(phone_source, &phone_active);
+  EXPECT_EQ(desktop_active.find("float phone"), std::string::npos);
+  EXPECT_NE(phone_active.find("float phone"), std::string::npos);
+}
+
 // `undefines` drops a scene's #define without setting the macro (the
 // accuracy report's textbook loop runs a scene without its bounds).
 TEST(Source, UndefinesDropTheScenesDefinitionWithoutSettingIt) {
