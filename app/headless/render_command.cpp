@@ -178,8 +178,12 @@ int render_command(const RenderRequest& req) {
     FrameInputs in = take_inputs_at(take, replay->wall(n), req.size, uniforms);
     in.uniforms = with_take_values(*values, in.uniforms);
     in.frame = req.take_fps > 0 ? take.frames.front().frame + n : in.frame;
-    in.time_delta = static_cast<float>(1.0 / req.fps);
-    in.frame_rate = static_cast<float>(req.fps);
+    // As in the window: what iTime moved since the frame before (0 while the
+    // take was paused), so that a simulation steps as it stepped live. The
+    // first frame's, whose frame before is not replayed, is one at --fps.
+    const double before = n > 0 ? take_inputs_at(take, replay->wall(n - 1), req.size, uniforms).time : in.time - 1.0 / req.fps;
+    in.time_delta = static_cast<float>(in.time - before);
+    in.frame_rate = in.time_delta > 0 ? 1.0f / in.time_delta : static_cast<float>(req.fps);
     in.date = date_of(date + std::chrono::duration_cast<std::chrono::system_clock::duration>(
                                  std::chrono::duration<double>(replay->wall(n))));
     const auto [first_crossed, end_crossed] = replay->crossed(n);

@@ -93,6 +93,33 @@ TEST_F(Take, ASliceIsTheSameFramesOfTheWholeReplay) {
   for (int n : {2, 3}) EXPECT_EQ(pixel("s_%d.exr", n), pixel("w_%d.exr", n)) << n;
 }
 
+// iTimeDelta and iFrameRate are those of the frames replayed, as the window
+// gave them live: 0 while the take was paused (the rate then is the
+// replay's), the recorded step after it. The first frame has no frame before
+// it: it gets one step at the replay's rate (here 10 fps: 3 frames in 0.2 s).
+TEST_F(Take, TimeDeltaIsWhatITimeMovedSinceTheFrameBefore) {
+  write_file(dir_ / "delta.frag",
+             "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTimeDelta, iFrameRate / 100.0, 0.0, 1.0); }\n");
+  write_file(dir_ / "paused.take.json", R"({
+ "raymarching_take": 1,
+ "scene": "delta.frag",
+ "include_dirs": [],
+ "date": "2026-11-24T04:00:00.000",
+ "events": [{"frame": 0, "defines": [], "hashes": {}}],
+ "frames": [
+{"w":0,"t":2.0,"f":10,"r":[4,2],"m":[0,0,0,0],"c":[0,0]},
+{"w":0.1,"t":2.0,"f":11},
+{"w":0.2,"t":2.25,"f":12}
+ ]
+})");
+  const test::Outcome out =
+      test::run_binary("render --take " + (dir_ / "paused.take.json").string() + " -o " + (dir_ / "d_%d.exr").string());
+  ASSERT_EQ(out.status, 0) << out.err;
+  expect_pixel(pixel("d_%d.exr", 0), {0.1f, 0.1f, 0.0f, 1.0f});
+  expect_pixel(pixel("d_%d.exr", 1), {0.0f, 0.1f, 0.0f, 1.0f});    // paused: iTime stood still
+  expect_pixel(pixel("d_%d.exr", 2), {0.25f, 0.04f, 0.0f, 1.0f});  // 0.25 s: 4 fps
+}
+
 // A long take is larger than a shader may be: its own limit is not the shaders' 16 MiB.
 TEST_F(Take, ATakeLargerThanAShaderIsRead) {
   write_file(dir_ / "t.take.json", std::string(kTake) + std::string(17u << 20, ' '));
