@@ -131,6 +131,9 @@ int RenderCommand::run() const {
   if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);
   if (!date_.empty()) req.date = parse_date(date_);
   req.channels = channels_.get();
+  // A take's --channelN, as the window had them, unless the command line gives its own.
+  for (size_t c = 0; req.take && c < 4; ++c)
+    if (req.channels[c].empty()) req.channels[c] = req.take->channels[c];
   req.sets = sets_;
   req.timeout = timeout_;
   req.samples = samples_;

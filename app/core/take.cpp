@@ -127,6 +127,11 @@ std::optional<std::filesystem::path> write_take(const std::filesystem::path& pat
   head["raymarching_take"] = kFormat;
   head["scene"] = stored_path(take.scene, folder);
   if (!take.media.empty()) head["media"] = stored_path(take.media, folder);
+  if (std::any_of(take.channels.begin(), take.channels.end(), [](const auto& c) { return !c.empty(); })) {
+    json channels = json::array();
+    for (const auto& c : take.channels) channels.push_back(c.empty() ? std::string() : stored_path(c, folder));
+    head["channels"] = channels;
+  }
   json includes = json::array();
   for (const auto& dir : take.include_dirs) includes.push_back(stored_path(dir, folder));
   head["include_dirs"] = includes;
@@ -188,6 +193,10 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     Take take;
     take.scene = resolved_path(doc.at("scene").get<std::string>(), folder);
     if (doc.contains("media")) take.media = resolved_path(doc.at("media").get<std::string>(), folder);
+    const json channels = field<json>(doc, "channels", json::array());
+    for (size_t c = 0; c < std::min<size_t>(channels.size(), 4); ++c)
+      if (const std::string stored = channels.at(c).get<std::string>(); !stored.empty())
+        take.channels[c] = resolved_path(stored, folder);
     for (const auto& dir : field<json>(doc, "include_dirs", json::array()))
       take.include_dirs.push_back(resolved_path(dir.get<std::string>(), folder));
     take.date = field<std::string>(doc, "date", "");

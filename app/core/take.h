@@ -1,10 +1,11 @@
 // Takes: what the window's inputs did, frame by frame, recorded live (F9)
 // so that `render --take` can draw the same frames again offline, at any
 // size, rate and quality. A take is a small JSON file next to the scene: the
-// scene and its -I/-D, then per frame iTime, iFrame, the mouse, the keys and
+// scene and its -I/-D (and --channelN), then per frame iTime, iFrame, the mouse, the keys and
 // the shader's own uniforms, and the reloads and knob changes between
 // frames. Only what changed since the frame before is written.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -47,6 +48,7 @@ struct TakeEvent {
 struct Take {
   std::filesystem::path scene;  // absolute once read
   std::filesystem::path media;
+  std::array<std::filesystem::path, 4> channels;  // the window's --channelN (empty: none given)
   std::vector<std::filesystem::path> include_dirs;
   std::string date;    // iDate of frame 0, as `render --date` reads it
   std::vector<TakeFrame> frames;

@@ -7,10 +7,13 @@
 namespace rm {
 
 void TakeRecorder::start(const std::filesystem::path& scene, const std::filesystem::path& media,
-                         const SourceOptions& source, const Project& project) {
+                         const std::array<std::filesystem::path, 4>& channels, const SourceOptions& source,
+                         const Project& project) {
   take_.emplace();
   take_->scene = std::filesystem::absolute(scene).lexically_normal();
   take_->media = media;
+  for (size_t c = 0; c < 4; ++c)
+    if (!channels[c].empty()) take_->channels[c] = std::filesystem::absolute(channels[c]).lexically_normal();
   take_->include_dirs = source.include_dirs;
   take_->events.push_back({0, source.defines, pass_hashes(project)});
   keys_.clear();

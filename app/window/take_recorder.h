@@ -2,6 +2,7 @@
 // of every frame the window starts, F9 again (or quitting) writes them to a
 // take file next to the scene.
 #pragma once
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <optional>
@@ -20,8 +21,8 @@ class TakeRecorder {
   // The recorded frame a screenshot now shows: the latest one.
   int current_frame() const { return frames() - 1; }
 
-  void start(const std::filesystem::path& scene, const std::filesystem::path& media, const SourceOptions& source,
-             const Project& project);
+  void start(const std::filesystem::path& scene, const std::filesystem::path& media,
+             const std::array<std::filesystem::path, 4>& channels, const SourceOptions& source, const Project& project);
   // A frame the window starts, with the inputs it draws with (at the window's size).
   void frame(const FrameInputs& in);
   void key(int code, bool down);  // the keyboard a project reads (core/keyboard.h)

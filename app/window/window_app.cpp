@@ -810,7 +810,7 @@ class WindowApp {
       return;
     }
     if (project_.has_feedback()) restart();
-    take_.start(options_.scene, options_.media, source_, project_);
+    take_.start(options_.scene, options_.media, options_.channels, source_, project_);
     dirty_ = true;  // the next frame is the take's first, even in a static scene
     std::cout << "take: recording" << std::endl;
     update_title(true);

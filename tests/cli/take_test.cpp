@@ -60,6 +60,11 @@ class Take : public ::testing::Test {
     ASSERT_EQ(got.size(), want.size());
     for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-6) << "channel " << i;
   }
+  // Arguments that render a 4x2 PNG of one colour to `name` in the folder.
+  std::string good_png(const std::string& name, const std::string& colour) {
+    write_file(dir_ / (name + ".frag"), "void mainImage(out vec4 c, in vec2 f) { c = " + colour + "; }\n");
+    return (dir_ / (name + ".frag")).string() + " --size 4x2 -o " + (dir_ / name).string();
+  }
   TempDir dir_;
 };
 
@@ -118,6 +123,31 @@ TEST_F(Take, TimeDeltaIsWhatITimeMovedSinceTheFrameBefore) {
   expect_pixel(pixel("d_%d.exr", 0), {0.1f, 0.1f, 0.0f, 1.0f});
   expect_pixel(pixel("d_%d.exr", 1), {0.0f, 0.1f, 0.0f, 1.0f});    // paused: iTime stood still
   expect_pixel(pixel("d_%d.exr", 2), {0.25f, 0.04f, 0.0f, 1.0f});  // 0.25 s: 4 fps
+}
+
+// A take recorded with --channel0 replays with that image in iChannel0
+// (stored relative to the take), unless the command line gives its own.
+TEST_F(Take, ReplaysWithTheChannelImagesItWasRecordedWith) {
+  write_file(dir_ / "channel.frag", "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, vec2(0.5)); }\n");
+  ASSERT_EQ(test::run_binary("render " + good_png("red.png", "vec4(1.0, 0.0, 0.0, 1.0)")).status, 0);
+  ASSERT_EQ(test::run_binary("render " + good_png("blue.png", "vec4(0.0, 0.0, 1.0, 1.0)")).status, 0);
+  write_file(dir_ / "channel.take.json", R"({
+ "raymarching_take": 1,
+ "scene": "channel.frag",
+ "channels": ["red.png", "", "", ""],
+ "include_dirs": [],
+ "date": "2026-11-24T04:00:00.000",
+ "events": [{"frame": 0, "defines": [], "hashes": {}}],
+ "frames": [{"w":0,"t":1.0,"f":0,"r":[4,2],"m":[0,0,0,0],"c":[0,0]}]
+})");
+  const std::string take = "render --take " + (dir_ / "channel.take.json").string();
+  const test::Outcome recorded = test::run_binary(take + " -o " + (dir_ / "r_%d.exr").string());
+  ASSERT_EQ(recorded.status, 0) << recorded.err;
+  expect_pixel(pixel("r_%d.exr", 0), {1.0f, 0.0f, 0.0f, 1.0f});
+  const test::Outcome given =
+      test::run_binary(take + " --channel0 " + (dir_ / "blue.png").string() + " -o " + (dir_ / "b_%d.exr").string());
+  ASSERT_EQ(given.status, 0) << given.err;
+  expect_pixel(pixel("b_%d.exr", 0), {0.0f, 0.0f, 1.0f, 1.0f});
 }
 
 // A long take is larger than a shader may be: its own limit is not the shaders' 16 MiB.

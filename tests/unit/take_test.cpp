@@ -28,6 +28,7 @@ Take sample_take(const fs::path& dir) {
   Take take;
   take.scene = dir / "scene.frag";
   take.include_dirs = {dir / "lib", "/usr/share/elsewhere"};
+  take.channels[2] = dir / "textures" / "wood.png";
   take.date = "2026-11-24T04:00:00.000";
   take.events.push_back({0, {{"RM_STEPS", "64"}}, {{"scene.frag", "00000000000000aa"}}});
   take.events.push_back({2, {{"RM_STEPS", "128"}}, {{"scene.frag", "00000000000000aa"}}});
@@ -59,6 +60,7 @@ TEST_F(TakeFiles, ReadsBackWhatWasWrittenAndWritesOnlyWhatChanged) {
   EXPECT_NE(text.find("\"scene\": \"scene.frag\""), std::string::npos) << text;
   EXPECT_NE(text.find("\"lib\""), std::string::npos);
   EXPECT_NE(text.find("/usr/share/elsewhere"), std::string::npos);
+  EXPECT_NE(text.find("\"textures/wood.png\""), std::string::npos) << text;
   // The mouse is written in the frames it changed in (all four here), the uniforms in 0 and 2 only.
   auto count = [&](const std::string& what) {
     int n = 0;
@@ -73,6 +75,7 @@ TEST_F(TakeFiles, ReadsBackWhatWasWrittenAndWritesOnlyWhatChanged) {
   ASSERT_TRUE(back) << error;
   EXPECT_EQ(back->scene, take.scene);
   EXPECT_EQ(back->include_dirs, take.include_dirs);
+  EXPECT_EQ(back->channels, take.channels);  // --channel2 only
   EXPECT_EQ(back->date, take.date);
   ASSERT_EQ(back->events.size(), 2u);
   EXPECT_EQ(back->events[1].frame, 2);
