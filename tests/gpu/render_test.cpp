@@ -203,6 +203,34 @@ TEST_F(Gpu, TiledRenderEqualsOnePass) {
   EXPECT_EQ(whole.rgba, tiled.rgba);
 }
 
+// A pass is drawn under the logic op COPY (llvmpipe then generates its code
+// once): it must write exactly what the shader writes into an 8-bit target,
+// and leave no logic op behind, which would turn off the blending that
+// supersamples and the interface draw with.
+TEST_F(Gpu, APassWritesWhatTheShaderWritesAndLeavesNoLogicOpBehind) {
+  write_file(dir_ / "grey.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.4, 0.75, 1.0); }\n");
+  Scene scene(dir_ / "grey.frag", {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  const gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(texture.get(), 1, GL_RGBA8, 4, 4);
+  const gl::Framebuffer target = gl::make_framebuffer();
+  glNamedFramebufferTexture(target.get(), GL_COLOR_ATTACHMENT0, texture.get(), 0);
+  const float red[4] = {1, 0, 0, 1};
+  glClearNamedFramebufferfv(target.get(), GL_COLOR, 0, red);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.get());
+  FrameInputs in;
+  in.resolution = glm::vec3(4, 4, 1);
+  renderer_.draw(*scene.program(), in, channels_, {4, 4});
+  EXPECT_FALSE(glIsEnabled(GL_COLOR_LOGIC_OP));
+  unsigned char px[4] = {0, 0, 0, 0};
+  glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+  EXPECT_EQ(px[0], 64);
+  EXPECT_EQ(px[1], 102);
+  EXPECT_EQ(px[2], 191);
+  EXPECT_EQ(px[3], 255);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 // A pixel the edge x = 10.3 cuts is covered 0.3: the mean of 16 samples
 // comes near that in every kind of shader, drawn whole or in tiles, and one
 // sample is the pixel centre alone.
