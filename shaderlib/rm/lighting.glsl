@@ -117,7 +117,11 @@ vec3 rmShade(vec3 p, vec3 n, vec3 v, RmMaterial m, RmLight light, float shadow) 
 // 0 if something lies on the ray ro + t rd for t in [tMin, tMax], else 1.
 float rmHardShadow(vec3 ro, vec3 rd, float tMin, float tMax) {
   float t = max(tMin, 1e-6);
-  for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
+  int i = 0;  // steps so far, on mapBound or map()
+#ifdef RM_MAP_BOUND
+  t = rmSkipOpenSpace(ro, rd, t, tMax, 0.0, 1e-4, 1.0, 1e30, RM_SHADOW_STEPS, i).x;
+#endif
+  for (; i < RM_SHADOW_STEPS && t < tMax; ++i) {
     float h = rmMap(ro + rd * t);
     if (h < 1e-4 * t) return 0.0;
     t += h;
@@ -130,7 +134,16 @@ float rmHardShadow(vec3 ro, vec3 rd, float tMin, float tMax) {
 float rmSoftShadow(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   float shade = 1.0;
   float t = max(tMin, 1e-6);  // t = 0 would make k h / t a 0/0
-  for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
+  int i = 0;  // steps so far, on mapBound or map()
+#ifdef RM_MAP_BOUND
+  // Past the cheap parts, k h / t is their k x / t; the costly ones leave the
+  // light whole while k y / t >= 1. map() decides only where that fails.
+  vec2 open = rmSkipOpenSpace(ro, rd, t, tMax, 0.0, 1.0 / k, 1e-3, 0.5, RM_SHADOW_STEPS, i);
+  t = open.x;
+  shade = min(shade, open.y);
+  if (shade < 1e-3) return 0.0;
+#endif
+  for (; i < RM_SHADOW_STEPS && t < tMax; ++i) {
     float h = rmMap(ro + rd * t);
     shade = min(shade, k * h / t);
     if (shade < 1e-3) break;
@@ -146,7 +159,13 @@ float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   float previousH = 0.0;
   float stepLength = 0.0;
   float t = max(tMin, 1e-6);
-  for (int i = 0; i < RM_SHADOW_STEPS && t < tMax; ++i) {
+  int i = 0;  // steps so far, on mapBound or map()
+#ifdef RM_MAP_BOUND
+  // Light is certain while k h / t >= 1 (h >= mapBound): only where that
+  // fails does map() decide the penumbra.
+  t = rmSkipOpenSpace(ro, rd, t, tMax, 0.0, 1.0 / k, 1.0, 0.5, RM_SHADOW_STEPS, i).x;
+#endif
+  for (; i < RM_SHADOW_STEPS && t < tMax; ++i) {
     float h = rmMap(ro + rd * t);
     if (h <= 0.0) return 0.0;
     // The occluder is nearest where the spheres of this and the last step meet:
@@ -178,12 +197,37 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   float blocked = 0.0;  // weighted share of each tap's distance that is blocked
   float total = 0.0;
   float weight = 1.0;
+#ifdef RM_MAP_BOUND
+  // A tap whose costly parts lie beyond its reach sees map() as the cheap
+  // parts, which mapBound gives exactly. map() only for the others, in a loop
+  // no longer than they span: a CPU renderer runs an if's body for every pixel.
+  int first = RM_AO_SAMPLES, last = -1;
+  bool costly[RM_AO_SAMPLES];
+  for (int i = 0; i < RM_AO_SAMPLES; ++i) {
+    float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
+    vec2 bound = mapBound(p + n * h);
+    bool exact = bound.y - base >= h;
+    costly[i] = !exact;
+    blocked += exact ? weight * clamp((h - (bound.x - base)) / h, 0.0, 1.0) : 0.0;
+    first = exact ? first : min(first, i);
+    last = exact ? last : i;
+    total += weight;
+    weight *= 0.8;
+  }
+  weight = pow(0.8, float(first));
+  for (int i = first; i <= last; ++i) {
+    float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
+    if (costly[i]) blocked += weight * clamp((h - (rmMap(p + n * h) - base)) / h, 0.0, 1.0);
+    weight *= 0.8;
+  }
+#else
   for (int i = 0; i < RM_AO_SAMPLES; ++i) {
     float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
     blocked += weight * clamp((h - (rmMap(p + n * h) - base)) / h, 0.0, 1.0);
     total += weight;
     weight *= 0.8;  // near taps matter most
   }
+#endif
   return clamp(1.0 - 1.5 * blocked / total, 0.0, 1.0);
 }
 

@@ -1,10 +1,19 @@
 // rm/map.glsl: the scene's map() as the library calls it, so that a build can
 // count every evaluation (primary rays, normals, shadows, AO, secondary rays).
-// Provides: rmMap, and rmEvaluations when RM_COUNT is defined.
+// Provides: rmMap, rmEvaluations when RM_COUNT is defined, and rmSkipOpenSpace
+//   when RM_MAP_BOUND is.
 // Needs: the scene's `float map(vec3 p)` (declared here); rm/views.glsl
-//   (included, for the debug views).
+//   (included, for the debug views); with RM_MAP_BOUND the scene's
+//   `vec2 mapBound(vec3 p)`.
 // Knobs: RM_COUNT (define it to count; the count is per pixel, in
 //   rmEvaluations). Without it rmMap is map itself: counting costs nothing.
+//   RM_MAP_BOUND: the scene also gives vec2 mapBound(p): x the distance to its
+//   cheap parts, as map() gives it, and y a distance that never exceeds the
+//   one to the rest (bounding volumes of its costly parts). The march, the
+//   shadow rays and AO cross open space and pass the cheap parts with it, and
+//   call map() only where y says a costly part is near (examples/gallery.frag). A CPU renderer such as
+//   llvmpipe runs every branch of map() for every pixel, so an `if` around a
+//   costly part saves nothing there; a shorter loop does.
 #ifndef RM_MAP_GLSL
 #define RM_MAP_GLSL
 
@@ -21,6 +30,32 @@ float rmMap(vec3 p) {
 }
 #else
 #define rmMap map
+#endif
+
+#ifdef RM_MAP_BOUND
+vec2 mapBound(vec3 p);
+
+// Marches ro + t rd from t toward tEnd on mapBound() alone while map() is not
+// needed: while the costly parts stay farther than near = max(nearMin,
+// nearPerT * t), and the cheap parts farther than cheapStop * near. Steps are
+// at most maxStep, at most maxSteps of them. Returns where it stopped and the
+// least (cheap distance / near) on the way: with cheapStop < 1 the caller
+// walks past the cheap parts and learns how close it came (a penumbra).
+// `steps` gets the steps taken, which the caller's own limit includes: a ray
+// that creeps along a cheap part must not then get a fresh limit of map()
+// calls. Bound steps are not map() calls: RM_COUNT does not count them.
+vec2 rmSkipOpenSpace(vec3 ro, vec3 rd, float t, float tEnd, float nearMin, float nearPerT, float cheapStop,
+                     float maxStep, int maxSteps, out int steps) {
+  float closest = 1e30;
+  for (steps = 0; steps < maxSteps && t < tEnd; ++steps) {
+    vec2 h = mapBound(ro + rd * t);
+    float near = max(nearMin, nearPerT * t);
+    closest = min(closest, h.x / near);
+    if (h.y < near || h.x < cheapStop * near) break;
+    t += min(min(h.x, h.y), maxStep);
+  }
+  return vec2(t, closest);
+}
 #endif
 
 #include <rm/views.glsl>

@@ -168,12 +168,27 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
   if (!rmMarchSpan(ro, rd, s, t, tEnd, miss)) return rmEndOnGround(miss);
 
   float originScale = length(ro);
+  int skipped = 0;  // steps on mapBound, which count toward s.maxSteps but are no map() calls
+#ifdef RM_MAP_BOUND
+  // Outside objects, cross the open space on the scene's cheap bound.
+  if (s.side > 0.0) {
+    vec2 open = rmSkipOpenSpace(ro, rd, t, tEnd, max(s.epsilon, 4.8e-7 * originScale),
+                                s.cone * RM_HIT_PIXELS + 4.8e-7, 1.0, 1e30, s.maxSteps, skipped);
+    t = open.x;
+    if (open.y < 1.0) {  // a cheap part within the threshold: map(), no larger, would only agree
+#ifdef RM_VIEW
+      rmRecordHit(t);
+#endif
+      return RmMarch(t, 0, RM_HIT, false, rmHitThreshold(s, t, originScale));
+    }
+  }
+#endif
   float omega = s.omega;
   float previousD = 0.0;  // distance at the last accepted point
   float stepLength = 0.0;
-  for (int i = 0; i < s.maxSteps; ++i) {
+  for (int i = skipped; i < s.maxSteps; ++i) {
     if (t > tEnd) {
-      miss.steps = i;
+      miss.steps = i - skipped;
       return rmEndOnGround(miss);
     }
     float d = s.side * rmMap(ro + rd * t);
@@ -189,17 +204,17 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
 #ifdef RM_VIEW
       rmRecordHit(t);
 #endif
-      return RmMarch(t, i + 1, RM_HIT, false, threshold);
+      return RmMarch(t, i + 1 - skipped, RM_HIT, false, threshold);
     }
     previousD = d;
     stepLength = omega * d;
     t += stepLength;
   }
   if (t > tEnd) {
-    miss.steps = s.maxSteps;
+    miss.steps = s.maxSteps - skipped;
     return rmEndOnGround(miss);
   }
-  return RmMarch(t, s.maxSteps, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
+  return RmMarch(t, s.maxSteps - skipped, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
 }
 
 // rmMarch with the default settings.

@@ -33,6 +33,9 @@
 //   RM_BOUNDING_BOX_MIN / RM_BOUNDING_BOX_MAX vec3 corners: the same with a
 //                  box, which fits a flat layout (objects on a floor) tighter;
 //                  both may be given, and a ray then keeps to where they overlap
+//   RM_MAP_BOUND   the scene also gives vec2 mapBound(p): its cheap parts'
+//                  distance and a bound of its costly parts' (rm/map.glsl);
+//                  rays call map() only near the costly parts
 //   RM_GRID_PERIOD / RM_GRID_RADIUS  an endless grid of instances: the scene
 //                  gives mapCell(q, cell) instead of map() (rm/grid.glsl), and
 //                  primary rays and hard shadows cross empty cells in one step

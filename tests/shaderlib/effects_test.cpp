@@ -287,6 +287,67 @@ RmMaterial groundMaterial(vec3 p) { return rmMaterial(vec3(0.5)); }
   EXPECT_GT((*got)[1].x, 0.05f) << "but not closed";
 }
 
+// RM_MAP_BOUND: a slab (cheap, given exactly by mapBound) and a ball (costly,
+// bound by a sphere 0.05 larger), lit by a sun with soft shadows and AO. The
+// picture is the one without the bound (the rays' steps differ, so shadows may
+// move by a sample's worth), map() runs far less often, and rays that never
+// come near the ball, whether they end in the sky or on the slab, call it only
+// for the hit point's normal. With hard, classic and improved shadows.
+TEST_F(EglTest, AMapBoundGivesThePictureWithFarFewerMapCalls) {
+  auto trace = [](const std::string& defines, const std::vector<glm::vec4>& rays) {
+    const std::string prelude = defines + R"(
+#define RM_AO
+#define RM_LIGHT_COUNT 1
+uniform vec4 iMouse;
+uniform vec3 iResolution;
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+int costly = 0;
+float slab(vec3 p) { return sdBox(p + vec3(0.0, 0.5, 0.0), vec3(3.0, 0.5, 3.0)); }
+float ball(vec3 p) { ++costly; return sdSphere(p - vec3(0.0, 0.8, 0.0), 0.8); }
+float map(vec3 p) { return min(slab(p), ball(p)); }
+vec2 mapBound(vec3 p) { return vec2(slab(p), length(p - vec3(0.0, 0.8, 0.0)) - 0.85); }
+RmLight light(int i) { return rmDirectionalLight(vec3(0.6, 0.7, 0.3), vec3(1.0)); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }
+)";
+    std::string error;
+    auto got = probe(prelude, "vec4(rmRender(vec3(0.0, 2.5, 6.0), normalize(P.xyz), 1e-3), float(costly))", rays,
+                     &error);
+    EXPECT_TRUE(got) << error;
+    return got.value_or(std::vector<glm::vec4>(rays.size(), glm::vec4(NAN)));
+  };
+  // A fan of 16 x 12 rays over the ball, its shadow on the slab and the sky;
+  // then two that stay far from the ball: into the sky, and onto the slab's far
+  // side, where the shadow ray leaves toward the sun, away from the ball.
+  std::vector<glm::vec4> rays;
+  for (int i = 0; i < 16 * 12; ++i)
+    rays.emplace_back(-0.5f + (i % 16) / 15.0f, 0.1f - 0.7f * (i / 16) / 11.0f, -1.0f, 0.0f);
+  rays.emplace_back(0.3f, 0.5f, -1.0f, 0.0f);
+  rays.emplace_back(0.55f, -0.5f, -1.0f, 0.0f);
+  for (const char* shadows : {"1", "2", "3"}) {
+    SCOPED_TRACE(std::string("RM_SHADOWS ") + shadows);
+    const std::string effects = std::string("#define RM_SHADOWS ") + shadows + "\n";
+    const auto plain = trace(effects, rays), bounded = trace(effects + "#define RM_MAP_BOUND\n", rays);
+    double calls_plain = 0, calls_bounded = 0, worst = 0, sum = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      calls_plain += plain[i].w;
+      calls_bounded += bounded[i].w;
+      const double diff = glm::length(glm::dvec3(bounded[i]) - glm::dvec3(plain[i]));
+      if (!(diff <= worst)) worst = diff;  // NaN makes it NaN
+      sum += diff;
+    }
+    std::printf("[map bound] RM_SHADOWS %s: map() calls %.0f -> %.0f, colour difference mean %.2g, worst %.2g\n",
+                shadows, calls_plain, calls_bounded, sum / rays.size(), worst);
+    EXPECT_LT(sum / rays.size(), 2e-3);
+    EXPECT_LT(worst, 0.1);
+    EXPECT_LT(calls_bounded, 0.5 * calls_plain);
+    const size_t sky = rays.size() - 2, corner = rays.size() - 1;
+    EXPECT_GT(plain[sky].w, 0.0f) << "without the bound the ray into the sky marches through map()";
+    EXPECT_EQ(bounded[sky].w, 0.0f) << "the ray into the sky";
+    EXPECT_EQ(bounded[corner].w, 4.0f) << "the far side of the slab: its normal's four taps, nothing more";
+  }
+}
+
 // RM_COUNT's rmEvaluations counts every map() call the library makes: with
 // every effect on, it equals the count the scene keeps inside map() itself.
 TEST_F(RunTime, CountingCoversEveryCall) {

@@ -26,6 +26,10 @@ float polar(vec3 p) {
   vec2 q = opRepeatPolar(p.xz, 6.0, cell);
   return sdBox(vec3(q.x - 1.0, p.y, q.y), vec3(0.25));
 }
+float polarMirror(vec3 p) {
+  vec2 q = opRepeatPolarMirror(p.xz, 8);
+  return sdBox(vec3(q.x - 1.0, p.y, q.y), vec3(0.25, 0.3, 0.15));
+}
 float grid(vec3 p) {
   vec3 cell;
   return sdSphere(opRepeat(p, vec3(1.0), cell), 0.3);
@@ -95,6 +99,15 @@ std::vector<Field> fields() {
          for (int i = 0; i < 6; ++i) {
            const glm::dmat3 r = rotation(-2.0 * M_PI * i / 6.0, {0, 1, 0});  // copy i at angle i * 60 deg in xz
            d = std::min(d, g::box(glm::transpose(r) * p - dvec3(1.0, 0, 0), dvec3(0.25)));
+         }
+         return d;
+       }},
+      {"RepeatPolarMirror", "polarMirror(p)", K::Exact,  // folds by mirrors, copies as opRepeatPolar places them
+       [](dvec3 p) {
+         double d = 1e9;
+         for (int i = 0; i < 8; ++i) {
+           const glm::dmat3 r = rotation(-2.0 * M_PI * i / 8.0, {0, 1, 0});
+           d = std::min(d, g::box(glm::transpose(r) * p - dvec3(1.0, 0, 0), dvec3(0.25, 0.3, 0.15)));
          }
          return d;
        }},

@@ -31,6 +31,7 @@ const char* kPrelude = R"(#include <rm/sdf.glsl>
 #include <rm/texture.glsl>
 float map(vec3 p) { return sdSphere(p, 1.0); }
 vec4 polar(vec2 p) { float cell; vec2 q = opRepeatPolar(p, 5.0, cell); return vec4(q, cell, 0.0); }
+vec4 polarMirror(vec2 p, int n) { return vec4(opRepeatPolarMirror(p, n), 0.0, 0.0); }
 vec4 march(vec3 ro, vec3 rd) {
   RmMarchSettings s = rmMarchSettings();
   s.boundBox = true; s.boundMin = vec3(-1.0); s.boundMax = vec3(1.0);
@@ -76,6 +77,8 @@ std::vector<Case> cases() {
        // outside both, r = 0 gives the distance to a right-angled edge: length(a, b)
        glm::vec4(0.3f, 0.3f, 0.5830952f, 0.5830952f)},
       {"PolarRepetitionAtTheCentre", "polar(vec2(0.0))", glm::vec4(0.0f)},
+      {"MirroredPolarRepetitionAtTheCentre", "polarMirror(vec2(0.0), 8)", glm::vec4(0.0f)},
+      {"MirroredPolarRepetitionOfNoCopies", "polarMirror(vec2(-0.5, -0.25), 0)", glm::vec4(-0.5f, 0.25f, 0, 0)},
       {"RotationAboutAZeroAxis", "vec4(rmRotationAxis(vec3(0.0), 1.0) * vec3(1.0, 2.0, 3.0), 0.0)",
        glm::vec4(1.0f, 2.0f, 3.0f, 0.0f)},
       {"RotationAboutAZeroAxisWithoutAMatrix", "vec4(opRotateAxis(vec3(1.0, 2.0, 3.0), vec3(0.0), 1.0), 0.0)",
