@@ -63,10 +63,10 @@ std::vector<Setting> sweep() {
   for (const char* preset : {"draft", "interactive", "final"})
     out.push_back({"preset", preset, {{"RM_QUALITY", preset_macro(preset)}}, {}});
   // The loop a tutorial writes: a fixed absolute epsilon, no over-relaxation, no
-  // bounds, and a grid marched step by step like any other map().
+  // bounds (nor the scene's mapBound), and a grid marched step by step like any other map().
   out.push_back({"textbook", "textbook",
                  {{"RM_HIT_PIXELS", "0.0"}, {"RM_HIT_EPSILON", "0.001"}, {"RM_OMEGA", "1.0"}, {"RM_GRID_MARCH", "0"}},
-                 {"RM_BOUNDING_SPHERE", "RM_BOUNDING_BOX_MIN", "RM_BOUNDING_BOX_MAX"}});
+                 {"RM_BOUNDING_SPHERE", "RM_BOUNDING_BOX_MIN", "RM_BOUNDING_BOX_MAX", "RM_MAP_BOUND"}});
   return out;
 }
 
