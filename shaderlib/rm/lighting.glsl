@@ -4,8 +4,9 @@
 //   RM_DIRECTIONAL_LIGHT, RM_SPOT_LIGHT, rmPointLight, rmDirectionalLight,
 //   rmSpotLight, rmLightDirection, rmLightDistance, rmLightRadiance,
 //   rmBlinnPhong, rmShade, rmHardShadow, rmSoftShadow, rmSoftShadowImproved,
-//   rmAmbientOcclusion, rmFog, rmToneMapReinhard, rmToneMapACES, rmGamma,
-//   rmLinearToSrgb, rmMouseLightDirection.
+//   rmAoTapDistance, rmAoTapBlocked, rmAmbientOcclusion, rmFog,
+//   rmToneMapReinhard, rmToneMapACES, rmGamma, rmLinearToSrgb,
+//   rmMouseLightDirection.
 // Needs: the scene's `float map(vec3 p)`; rm/common.glsl and rm/map.glsl
 //   (included; map() calls go through rmMap, which RM_COUNT counts).
 // Knobs: RM_SHADOW_STEPS (shadow ray steps), RM_AO_SAMPLES (AO taps).
@@ -186,6 +187,12 @@ float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   return clamp(shade, 0.0, 1.0);
 }
 
+// How far from the surface AO's tap i of RM_AO_SAMPLES looks.
+float rmAoTapDistance(int i) { return 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES); }
+
+// The share of tap distance h that is blocked, where map() there is d and at the surface base.
+float rmAoTapBlocked(float h, float d, float base) { return clamp((h - (d - base)) / h, 0.0, 1.0); }
+
 // Ambient occlusion at p with unit normal n: how much nearby geometry blocks
 // the hemisphere, 1 = open. Each tap's distance is measured from `surface`,
 // map()'s value at p: a hit point found slightly off the surface does not
@@ -204,11 +211,11 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   int first = RM_AO_SAMPLES, last = -1;
   bool costly[RM_AO_SAMPLES];
   for (int i = 0; i < RM_AO_SAMPLES; ++i) {
-    float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
+    float h = rmAoTapDistance(i);
     vec2 bound = mapBound(p + n * h);
     bool exact = bound.y - base >= h;
     costly[i] = !exact;
-    blocked += exact ? weight * clamp((h - (bound.x - base)) / h, 0.0, 1.0) : 0.0;
+    blocked += exact ? weight * rmAoTapBlocked(h, bound.x, base) : 0.0;
     first = exact ? first : min(first, i);
     last = exact ? last : i;
     total += weight;
@@ -216,14 +223,14 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   }
   weight = pow(0.8, float(first));
   for (int i = first; i <= last; ++i) {
-    float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
-    if (costly[i]) blocked += weight * clamp((h - (rmMap(p + n * h) - base)) / h, 0.0, 1.0);
+    float h = rmAoTapDistance(i);
+    if (costly[i]) blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
     weight *= 0.8;
   }
 #else
   for (int i = 0; i < RM_AO_SAMPLES; ++i) {
-    float h = 0.02 + 0.2 * float(i + 1) / float(RM_AO_SAMPLES);
-    blocked += weight * clamp((h - (rmMap(p + n * h) - base)) / h, 0.0, 1.0);
+    float h = rmAoTapDistance(i);
+    blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
     total += weight;
     weight *= 0.8;  // near taps matter most
   }

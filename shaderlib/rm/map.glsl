@@ -11,9 +11,10 @@
 //   cheap parts, as map() gives it, and y a distance that never exceeds the
 //   one to the rest (bounding volumes of its costly parts). The march, the
 //   shadow rays and AO cross open space and pass the cheap parts with it, and
-//   call map() only where y says a costly part is near (examples/gallery.frag). A CPU renderer such as
-//   llvmpipe runs every branch of map() for every pixel, so an `if` around a
-//   costly part saves nothing there; a shorter loop does.
+//   call map() only where y says a costly part is near (examples/gallery.frag).
+//   A CPU renderer such as llvmpipe runs every branch of map() for every
+//   pixel, so an `if` around a costly part saves nothing there; a shorter
+//   loop does.
 #ifndef RM_MAP_GLSL
 #define RM_MAP_GLSL
 

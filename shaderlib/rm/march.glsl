@@ -2,7 +2,7 @@
 // follows the pixel cone, safe over-relaxation, an optional analytic ground
 // plane and optional bounding volumes; also marches inside objects.
 // Provides: RM_HIT, RM_MISS, RM_OUT_OF_STEPS, RmMarchSettings, RmMarch,
-//   rmMarchSettings, rmHitThreshold, rmRaySphere, rmRayBox, rmRayGround,
+//   rmMarchSettings, rmHitThresholdTerms, rmHitThreshold, rmRaySphere, rmRayBox, rmRayGround,
 //   rmEndOnGround, rmMarchSpan, rmMarch, rmSurfaceOffset.
 // Needs: the scene's `float map(vec3 p)` (defined by the scene; map() calls go
 //   through rmMap, which RM_COUNT counts); rm/common.glsl and rm/map.glsl (included);
@@ -82,11 +82,17 @@ RmMarchSettings rmMarchSettings() {
                          false, 0.0, vec4(0.0), false, vec3(0.0), vec3(0.0));
 }
 
+// rmHitThreshold at t is max(x, y t) of these: its floor and its growth per unit of t.
+vec2 rmHitThresholdTerms(RmMarchSettings s, float originScale) {
+  return vec2(max(s.epsilon, 4.8e-7 * originScale), s.cone * RM_HIT_PIXELS + 4.8e-7);
+}
+
 // Hit threshold at distance t along a ray from ro: the pixel cone, but never
 // below epsilon nor below a few float steps at the point's magnitude
 // (|ro| + t bounds it). Written so the part that depends on t is one multiply.
 float rmHitThreshold(RmMarchSettings s, float t, float originScale) {
-  return max(max(s.epsilon, 4.8e-7 * originScale), (s.cone * RM_HIT_PIXELS + 4.8e-7) * t);
+  vec2 terms = rmHitThresholdTerms(s, originScale);
+  return max(terms.x, terms.y * t);
 }
 
 // Entry and exit distances of a ray (unit rd) through a sphere; x > y if it misses.
@@ -172,8 +178,8 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
 #ifdef RM_MAP_BOUND
   // Outside objects, cross the open space on the scene's cheap bound.
   if (s.side > 0.0) {
-    vec2 open = rmSkipOpenSpace(ro, rd, t, tEnd, max(s.epsilon, 4.8e-7 * originScale),
-                                s.cone * RM_HIT_PIXELS + 4.8e-7, 1.0, 1e30, s.maxSteps, skipped);
+    vec2 threshold = rmHitThresholdTerms(s, originScale);
+    vec2 open = rmSkipOpenSpace(ro, rd, t, tEnd, threshold.x, threshold.y, 1.0, 1e30, s.maxSteps, skipped);
     t = open.x;
     if (open.y < 1.0) {  // a cheap part within the threshold: map(), no larger, would only agree
 #ifdef RM_VIEW
