@@ -70,6 +70,23 @@ std::vector<KnobValue> knob_values(const Source& source, const std::string* give
   return out;
 }
 
+std::vector<Define> preset_knobs(const std::string& preset, const fs::path& shaderlib_dir) {
+  // A scene of one line that includes the presets, read from memory (the
+  // preprocessor reads the scene by its absolute path).
+  const fs::path scene = fs::absolute(shaderlib_dir / "<preset>").lexically_normal();
+  FileSystem files = disk_file_system();
+  files.read = [scene, disk = files.read](const fs::path& path, std::string* error) -> std::optional<std::string> {
+    if (path == scene) return std::string("#include <rm/quality.glsl>\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
+    return disk(path, error);
+  };
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir;
+  options.defines = {{"RM_QUALITY", preset_macro(preset)}};
+  std::vector<Define> out;
+  for (const KnobValue& k : knob_values(preprocess(scene, options, files))) out.push_back({k.knob->name, k.value});
+  return out;
+}
+
 std::vector<Define> with_define(std::vector<Define> defines, const std::string& name, const std::string& value) {
   defines.erase(std::remove_if(defines.begin(), defines.end(), [&](const Define& d) { return d.name == name; }),
                 defines.end());

@@ -40,6 +40,12 @@ const std::string& knob_probes();
 // here. Empty for a scene without shaderlib.
 std::vector<KnobValue> knob_values(const Source& source, const std::string* active = nullptr);
 
+// The knobs that `preset` ("reference") sets, at its values, as -D's: what
+// rm/quality.glsl gives a scene that defines none of them itself. As -D's
+// they win over a scene's own #defines (the accuracy command's reference
+// must not take a scene's lowered RM_SHADOW_STEPS). Empty without shaderlib.
+std::vector<Define> preset_knobs(const std::string& preset, const fs::path& shaderlib_dir);
+
 // `defines` with NAME set to VALUE: an existing -D of NAME is replaced, and
 // an empty VALUE removes it.
 std::vector<Define> with_define(std::vector<Define> defines, const std::string& name, const std::string& value);

@@ -212,7 +212,7 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   bool costly[RM_AO_SAMPLES];
   for (int i = 0; i < RM_AO_SAMPLES; ++i) {
     float h = rmAoTapDistance(i);
-    vec2 bound = mapBound(p + n * h);
+    vec2 bound = rmMapBound(p + n * h);
     bool exact = bound.y - base >= h;
     costly[i] = !exact;
     blocked += exact ? weight * rmAoTapBlocked(h, bound.x, base) : 0.0;

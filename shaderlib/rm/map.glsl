@@ -1,7 +1,7 @@
 // rm/map.glsl: the scene's map() as the library calls it, so that a build can
 // count every evaluation (primary rays, normals, shadows, AO, secondary rays).
-// Provides: rmMap, rmEvaluations when RM_COUNT is defined, and rmSkipOpenSpace
-//   when RM_MAP_BOUND is.
+// Provides: rmMap, rmEvaluations when RM_COUNT is defined, and rmMapBound,
+//   rmSkipOpenSpace (and rmBoundEvaluations with RM_COUNT) when RM_MAP_BOUND is.
 // Needs: the scene's `float map(vec3 p)` (declared here); rm/views.glsl
 //   (included, for the debug views); with RM_MAP_BOUND the scene's
 //   `vec2 mapBound(vec3 p)`.
@@ -34,7 +34,21 @@ float rmMap(vec3 p) {
 #endif
 
 #ifdef RM_MAP_BOUND
-vec2 mapBound(vec3 p);
+vec2 mapBound(vec3 p);  // the scene defines it: RM_MAP_BOUND says it does
+
+#ifdef RM_COUNT
+// mapBound() evaluations so far in this pixel: the work a bounded scene does
+// besides its map() calls (the accuracy command reports both).
+int rmBoundEvaluations = 0;
+
+// The scene's mapBound at p, counted.
+vec2 rmMapBound(vec3 p) {
+  ++rmBoundEvaluations;
+  return mapBound(p);
+}
+#else
+#define rmMapBound mapBound
+#endif
 
 // Marches ro + t rd from t toward tEnd on mapBound() alone while map() is not
 // needed: while the costly parts stay farther than near = max(nearMin,
@@ -44,12 +58,13 @@ vec2 mapBound(vec3 p);
 // walks past the cheap parts and learns how close it came (a penumbra).
 // `steps` gets the steps taken, which the caller's own limit includes: a ray
 // that creeps along a cheap part must not then get a fresh limit of map()
-// calls. Bound steps are not map() calls: RM_COUNT does not count them.
+// calls. Bound steps are not map() calls: RM_COUNT counts them apart, in
+// rmBoundEvaluations.
 vec2 rmSkipOpenSpace(vec3 ro, vec3 rd, float t, float tEnd, float nearMin, float nearPerT, float cheapStop,
                      float maxStep, int maxSteps, out int steps) {
   float closest = 1e30;
   for (steps = 0; steps < maxSteps && t < tEnd; ++steps) {
-    vec2 h = mapBound(ro + rd * t);
+    vec2 h = rmMapBound(ro + rd * t);
     float near = max(nearMin, nearPerT * t);
     closest = min(closest, h.x / near);
     if (h.y < near || h.x < cheapStop * near) break;

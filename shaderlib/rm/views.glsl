@@ -4,8 +4,8 @@
 // turns the pixel into the view with rmView.
 // Provides: RM_VIEW_STEPS, RM_VIEW_NORMALS, RM_VIEW_DEPTH, RM_VIEW_NAN,
 //   RM_VIEW_DATA, and with RM_VIEW: rmRecordHit, rmRecordNormal, rmHeat, rmView.
-// Needs: rmEvaluations from rm/map.glsl (RM_COUNT) for the steps view; it is
-//   included by rm/map.glsl, after the counter.
+// Needs: rmEvaluations (and rmBoundEvaluations) from rm/map.glsl (RM_COUNT)
+//   for the steps and data views; it is included by rm/map.glsl, after the counters.
 // Knobs: RM_VIEW_STEPS_SCALE (map() calls shown as white, default 256),
 //   RM_VIEW_DEPTH_SCALE (the distance shown as black, default 100).
 #ifndef RM_VIEWS_GLSL
@@ -15,7 +15,7 @@
 #define RM_VIEW_NORMALS 2  // the primary hit's normal as colour
 #define RM_VIEW_DEPTH 3    // the primary hit's distance, near bright, far dark, misses black
 #define RM_VIEW_NAN 4      // the picture in grey, NaN or Inf pixels magenta
-#define RM_VIEW_DATA 5     // raw numbers for the accuracy command: (evaluations, t, bad, 1)
+#define RM_VIEW_DATA 5     // raw numbers for the accuracy command: (map() calls, t, bad, mapBound() calls)
 
 #ifndef RM_VIEW_STEPS_SCALE
 #define RM_VIEW_STEPS_SCALE 256.0
@@ -66,7 +66,12 @@ vec4 rmView(vec4 color, vec2 fragCoord, vec3 resolution, bool bad) {
 #elif RM_VIEW == RM_VIEW_DEPTH
   return vec4(vec3(rmFirstT < 0.0 ? 0.0 : 1.0 - log(1.0 + rmFirstT) / log(1.0 + RM_VIEW_DEPTH_SCALE)), 1.0);
 #elif RM_VIEW == RM_VIEW_DATA
-  return vec4(float(rmEvaluations), rmFirstT, bad ? 1.0 : 0.0, 1.0);
+#ifdef RM_MAP_BOUND
+  float boundCalls = float(rmBoundEvaluations);
+#else
+  float boundCalls = 0.0;
+#endif
+  return vec4(float(rmEvaluations), rmFirstT, bad ? 1.0 : 0.0, boundCalls);
 #else
   return color;
 #endif

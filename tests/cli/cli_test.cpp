@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -199,6 +200,39 @@ TEST_F(Cli, AccuracyWritesATableACsvAChartAndPictures) {
   EXPECT_EQ(test::read_file(out / "accuracy.svg").rfind("<svg", 0), 0u);
   EXPECT_EQ(test::read_pixels(out / "reference.png").size(), 32u * 18u * 4u);
   EXPECT_EQ(test::read_pixels(out / "steps.png").size(), 32u * 18u * 4u);
+}
+
+// The reference is the scene at the reference preset's knobs, whatever the
+// scene's own #defines of them say: two march steps cannot reach the floor,
+// and the yardstick must show that as an error, not take the two steps too.
+TEST_F(Cli, AccuracyReferenceIgnoresTheScenesOwnKnobs) {
+  write_file(dir_ / "short.frag", "#define RM_MAX_STEPS 2\n#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
+                                  "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
+                                  "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n"
+                                  "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
+                                  "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
+  const auto out = dir_ / "report";
+  const test::Outcome r = run("accuracy " + (dir_ / "short.frag").string() + " --size 32x18 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  // knob,value,ms,wall_ms,evaluations_mean,evaluations_max,rmse,psnr_db,hit_miss_share,depth_error,
+  // nan_pixels,no_effect,bound_evaluations_mean
+  auto row = [&](const std::string& prefix) {
+    const std::string csv = test::read_file(out / "accuracy.csv");
+    const size_t at = csv.find("\n" + prefix);
+    EXPECT_NE(at, std::string::npos) << csv;
+    std::vector<std::string> fields;
+    std::stringstream line(csv.substr(at + 1, csv.find('\n', at + 1) - at - 1));
+    for (std::string f; std::getline(line, f, ',');) fields.push_back(f);
+    return fields;
+  };
+  const auto base = row("default,default,"), long_march = row("RM_MAX_STEPS,512,");
+  ASSERT_EQ(base.size(), 13u);
+  ASSERT_EQ(long_march.size(), 13u);
+  EXPECT_GT(std::stod(base[8]), 0.1) << "the default's misses match the reference's: it took the scene's 2 steps";
+  EXPECT_LT(std::stod(base[7]), 30.0);
+  EXPECT_LT(std::stod(long_march[8]), 0.02);  // a silhouette pixel or two
+  EXPECT_GT(std::stod(long_march[7]), std::stod(base[7]) + 10.0);
 }
 
 TEST_F(Cli, AccuracyNeedsAShaderlibScene) {

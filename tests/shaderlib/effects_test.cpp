@@ -348,6 +348,48 @@ RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }
   }
 }
 
+// RM_COUNT's rmBoundEvaluations counts every mapBound() call the library
+// makes (the march, each shadow form, AO), apart from map()'s: it equals the
+// count the scene keeps inside mapBound() itself, and leaves rmEvaluations alone.
+TEST_F(EglTest, CountingCoversEveryMapBoundCall) {
+  std::vector<glm::vec4> rays;
+  for (int i = 0; i < 8 * 6; ++i) rays.emplace_back(-0.5f + (i % 8) / 7.0f, 0.1f - 0.7f * (i / 8) / 5.0f, -1.0f, 0.0f);
+  for (const char* shadows : {"1", "2", "3"}) {
+    SCOPED_TRACE(std::string("RM_SHADOWS ") + shadows);
+    const std::string prelude = std::string("#define RM_SHADOWS ") + shadows + R"(
+#define RM_COUNT
+#define RM_MAP_BOUND
+#define RM_AO
+#define RM_LIGHT_COUNT 1
+uniform vec4 iMouse;
+uniform vec3 iResolution;
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+int maps = 0, bounds = 0;
+float slab(vec3 p) { return sdBox(p + vec3(0.0, 0.5, 0.0), vec3(3.0, 0.5, 3.0)); }
+float map(vec3 p) { ++maps; return min(slab(p), sdSphere(p - vec3(0.0, 0.8, 0.0), 0.8)); }
+vec2 mapBound(vec3 p) { ++bounds; return vec2(slab(p), length(p - vec3(0.0, 0.8, 0.0)) - 0.85); }
+RmLight light(int i) { return rmDirectionalLight(vec3(0.6, 0.7, 0.3), vec3(1.0)); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }
+vec4 counts(vec3 rd) {
+  rmRender(vec3(0.0, 2.5, 6.0), rd, 1e-3);
+  return vec4(float(rmBoundEvaluations - bounds), float(bounds), float(rmEvaluations - maps), float(maps));
+}
+)";
+    std::string error;
+    const auto got = probe(prelude, "counts(normalize(P.xyz))", rays, &error);
+    ASSERT_TRUE(got) << error;
+    float total = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      EXPECT_EQ((*got)[i].x, 0.0f) << "ray " << i << ": the library's mapBound() count differs from the scene's";
+      EXPECT_EQ((*got)[i].z, 0.0f) << "ray " << i << ": mapBound() calls leaked into the map() count";
+      EXPECT_GT((*got)[i].y, 0.0f) << "ray " << i;
+      total += (*got)[i].y;
+    }
+    EXPECT_GT(total, 10.0f * rays.size()) << "the shadow and AO taps are counted too";
+  }
+}
+
 // RM_COUNT's rmEvaluations counts every map() call the library makes: with
 // every effect on, it equals the count the scene keeps inside map() itself.
 TEST_F(RunTime, CountingCoversEveryCall) {

@@ -56,6 +56,21 @@ TEST(Knobs, TheSameFromValidation) {
   EXPECT_EQ(knobs.at("RM_OMEGA"), "1.3");
 }
 
+// The accuracy command's yardstick: every knob the reference preset sets, at
+// its value, and none it leaves to the modules' defaults (RM_OMEGA).
+TEST(Knobs, ThoseAPresetSets) {
+  std::map<std::string, std::string> knobs;
+  for (const Define& d : preset_knobs("reference", shaderlib_dir())) knobs[d.name] = d.value;
+  const std::map<std::string, std::string> expected = {
+      {"RM_HIT_PIXELS", "0.05"}, {"RM_HIT_EPSILON", "1e-6"}, {"RM_MAX_STEPS", "2000"}, {"RM_SHADOW_STEPS", "512"},
+      {"RM_AO_SAMPLES", "16"},   {"RM_NORMAL_TAPS", "6"},    {"RM_SAMPLES", "4"}};
+  EXPECT_EQ(knobs, expected);
+  // As -D's they win over a scene's own lowered knob.
+  std::vector<Define> defines = preset_knobs("reference", shaderlib_dir());
+  EXPECT_EQ(knobs_of("#define RM_SHADOW_STEPS 8\n#include <rm/render.glsl>\n", defines).at("RM_SHADOW_STEPS"), "512");
+  EXPECT_TRUE(preset_knobs("reference", "/nonexistent").empty());
+}
+
 TEST(Knobs, NoneWithoutShaderlib) { EXPECT_TRUE(knobs_of("#define RM_MAX_STEPS 5\n").empty()); }
 
 TEST(Knobs, WithDefineReplacesAndRemoves) {
