@@ -98,6 +98,24 @@ std::string plain_words(std::string message) {
   return message;
 }
 
+// The final text's first line (1-based) and column that name function f( outside
+// a comment, which is its prototype or its first call: the line to look at for
+// a function that has no body, where the linker's log names no line.
+std::optional<std::pair<int, int>> first_mention_of_function(const std::string& name, const Source& source) {
+  if (name.empty()) return std::nullopt;
+  std::istringstream code(lexing::strip_comments(source.text));
+  int number = 0;
+  for (std::string line; std::getline(code, line);) {
+    ++number;
+    if (!lexing::has_call(line, name)) continue;
+    size_t column = line.find(name);
+    while (column != std::string::npos && column > 0 && lexing::is_word_char(line[column - 1]))
+      column = line.find(name, column + 1);
+    return std::pair{number, column == std::string::npos ? 0 : static_cast<int>(column) + 1};
+  }
+  return std::nullopt;
+}
+
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
   Diagnostic d;
   d.severity = severity;
@@ -189,6 +207,11 @@ std::string parse_in_child(const Source& source, const std::string* active_text)
     DeepestNode deepest;
     if (tree && tree->getTreeRoot()) tree->getTreeRoot()->traverse(&deepest);
     verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog();
+    // Linking finds what compiling cannot: a function declared and called but
+    // defined nowhere (a scene that promises RM_MAP_BOUND without mapBound).
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (parsed && !program.link(EShMsgDefault)) verdict += program.getInfoLog();
     if (active_text) verdict += '\0' + preprocessed(*active_text).value_or("");
   });
   return verdict;
@@ -343,6 +366,21 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
     if (text.empty()) continue;
     if (format == LogFormat::Glslang) {
+      // The linker: "ERROR: Linking fragment stage: No function definition (body) found: ",
+      // then the function's mangled name on a line of its own, "    mapBound(vf3;".
+      if (text.rfind("ERROR: Linking fragment stage: No function definition (body) found:", 0) == 0) {
+        std::string mangled;
+        std::getline(in, mangled);
+        const size_t begin = mangled.find_first_not_of(" \t");
+        const std::string name = begin == std::string::npos ? "" : mangled.substr(begin, mangled.find('(') - begin);
+        const std::string message = "function '" + name + "' is declared and called but defined nowhere";
+        if (const auto at = first_mention_of_function(name, source))
+          out.push_back(locate(source, Severity::Error, at->first, at->second, message));
+        else
+          out.push_back(Diagnostic{Severity::Error, source.files.empty() ? std::string() : source.files.front().string(),
+                                   0, 0, message});
+        continue;
+      }
       // "ERROR: 0:12: 'foo' : undeclared identifier", then "ERROR: 1 compilation errors. ..."
       LogLine line(text);
       const auto severity = line.severity("ERROR: ", "WARNING: ");
@@ -379,6 +417,17 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     LogLine line(text);
     if (const auto severity = line.severity("error: ", "warning: ")) d.severity = *severity;
     d.message = line.rest();
+    const std::string_view mesa_unresolved = "unresolved reference to function `";
+    const bool unresolved = d.message.rfind(mesa_unresolved, 0) == 0 && d.message.back() == '\'';
+    const auto at = unresolved ? first_mention_of_function(d.message.substr(mesa_unresolved.size(),
+                                                                            d.message.size() - mesa_unresolved.size() - 1),
+                                                           source)
+                               : std::nullopt;
+    if (at) {
+      const Severity severity = d.severity;
+      std::string message = std::move(d.message);
+      d = locate(source, severity, at->first, at->second, std::move(message));
+    }
     out.push_back(std::move(d));
   }
   return out;

@@ -35,6 +35,20 @@ TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   EXPECT_EQ(diags[0].column, 12);
 }
 
+// glslang links as well as compiles: a function called but defined nowhere
+// is an error before the driver sees it, at its prototype's line.
+TEST(Check, AFunctionWithoutABodyIsAnErrorAtItsPrototype) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(f), 0.0, 1.0); }\n");
+  write_file(dir / "lib.glsl", "// helper(p): the scene's own\n\nvec2 helper(vec2 p);\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_EQ(count_errors(diags), 1) << join(diags);
+  EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() +
+                                ":3:6: error: function 'helper' is declared and called but defined nowhere");
+}
+
 TEST(Check, ValidShaderOfEachKindHasNoErrors) {
   TempDir dir;
   write_file(dir / "toy.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, sin(iTime), 1.0); }\n");
@@ -90,6 +104,21 @@ TEST(MapLog, LinkErrorWithoutLineNamesTheScene) {
   Diagnostics d = map_log("error: unresolved reference to function `f'\n", s, LogFormat::Mesa);
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].str(), (dir / "scene.frag").string() + ": error: unresolved reference to function `f'");
+}
+
+// A function declared but defined nowhere: the line that first names it
+// (outside comments), in the file that holds it, here an include's prototype.
+TEST(MapLog, UnresolvedFunctionPointsAtItsFirstMention) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(f)); }\n");
+  write_file(dir / "lib.glsl", "// helper(): the scene's own\nfloat unhelpful(vec2 p) { return 0.0; }\n"
+                               "  float helper(vec2 p);\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  Diagnostics d = map_log("error: unresolved reference to function `helper'\n", s, LogFormat::Mesa);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].str(), (dir / "lib.glsl").string() + ":3:9: error: unresolved reference to function `helper'");
 }
 
 }  // namespace
