@@ -6,6 +6,7 @@
 #include <glslang/Public/ShaderLang.h>
 #include <pthread.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <mutex>
@@ -374,11 +375,13 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
         const size_t begin = mangled.find_first_not_of(" \t");
         const std::string name = begin == std::string::npos ? "" : mangled.substr(begin, mangled.find('(') - begin);
         const std::string message = "function '" + name + "' is declared and called but defined nowhere";
-        if (const auto at = first_mention_of_function(name, source))
-          out.push_back(locate(source, Severity::Error, at->first, at->second, message));
-        else
-          out.push_back(Diagnostic{Severity::Error, source.files.empty() ? std::string() : source.files.front().string(),
-                                   0, 0, message});
+        const auto at = first_mention_of_function(name, source);
+        Diagnostic d = at ? locate(source, Severity::Error, at->first, at->second, message)
+                          : Diagnostic{Severity::Error, source.files.empty() ? std::string() : source.files.front().string(),
+                                       0, 0, message};
+        // The linker says it once per call: say it once.
+        if (std::none_of(out.begin(), out.end(), [&](const Diagnostic& e) { return e.str() == d.str(); }))
+          out.push_back(std::move(d));
         continue;
       }
       // "ERROR: 0:12: 'foo' : undeclared identifier", then "ERROR: 1 compilation errors. ..."

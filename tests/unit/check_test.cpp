@@ -40,8 +40,10 @@ TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
 TEST(Check, AFunctionWithoutABodyIsAnErrorAtItsPrototype) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
-                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(f), 0.0, 1.0); }\n");
-  write_file(dir / "lib.glsl", "// helper(p): the scene's own\n\nvec2 helper(vec2 p);\n");
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(f), twice(f)); }\n");
+  // Called from two places: the linker reports it twice, the host once.
+  write_file(dir / "lib.glsl", "// helper(p): the scene's own\n\nvec2 helper(vec2 p);\n"
+                               "vec2 twice(vec2 p) { return helper(p); }\n");
   Diagnostics diags;
   check_scene(dir / "scene.frag", {}, &diags);
   ASSERT_EQ(count_errors(diags), 1) << join(diags);
