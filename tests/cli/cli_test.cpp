@@ -24,6 +24,17 @@ class Cli : public ::testing::Test {
     write_file(dir_ / "good.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
     return (dir_ / "good.frag").string();
   }
+  // A shaderlib scene (a ball on a floor, seen from above the floor) whose
+  // first line is `first_line`, written to NAME; returns its path.
+  std::string ball_on_floor(const std::string& name, const std::string& first_line) {
+    write_file(dir_ / name, first_line + "\n#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
+                            "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
+                            "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
+                            "void mainImage(out vec4 c, in vec2 f) {\n"
+                            "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
+                            "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
+    return (dir_ / name).string();
+  }
   static int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
   TempDir dir_;
 };
@@ -182,14 +193,9 @@ TEST_F(Cli, CheckExpandPrintsThePreprocessedSource) {
 
 // `accuracy` sweeps the knobs of a shaderlib scene and writes its report.
 TEST_F(Cli, AccuracyWritesATableACsvAChartAndPictures) {
-  write_file(dir_ / "sphere.frag", "#define RM_SHADOWS 2\n#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
-                                   "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
-                                   "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
-                                   "void mainImage(out vec4 c, in vec2 f) {\n"
-                                   "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
-                                   "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
+  const std::string scene = ball_on_floor("sphere.frag", "#define RM_SHADOWS 2");
   const auto out = dir_ / "report";
-  const test::Outcome r = run("accuracy " + (dir_ / "sphere.frag").string() + " --size 32x18 --out " + out.string());
+  const test::Outcome r = run("accuracy " + scene + " --size 32x18 --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("[1/"), std::string::npos) << "no progress shown";
   const std::string csv = test::read_file(out / "accuracy.csv");
@@ -206,14 +212,9 @@ TEST_F(Cli, AccuracyWritesATableACsvAChartAndPictures) {
 // scene's own #defines of them say: two march steps cannot reach the floor,
 // and the yardstick must show that as an error, not take the two steps too.
 TEST_F(Cli, AccuracyReferenceIgnoresTheScenesOwnKnobs) {
-  write_file(dir_ / "short.frag", "#define RM_MAX_STEPS 2\n#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
-                                  "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
-                                  "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
-                                  "void mainImage(out vec4 c, in vec2 f) {\n"
-                                  "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
-                                  "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
+  const std::string scene = ball_on_floor("short.frag", "#define RM_MAX_STEPS 2");
   const auto out = dir_ / "report";
-  const test::Outcome r = run("accuracy " + (dir_ / "short.frag").string() + " --size 32x18 --out " + out.string());
+  const test::Outcome r = run("accuracy " + scene + " --size 32x18 --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   // knob,value,ms,wall_ms,evaluations_mean,evaluations_max,rmse,psnr_db,hit_miss_share,depth_error,
   // nan_pixels,no_effect,bound_evaluations_mean
