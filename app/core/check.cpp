@@ -117,6 +117,14 @@ std::optional<std::pair<int, int>> first_mention_of_function(const std::string& 
   return std::nullopt;
 }
 
+// The function Mesa's link error names ("unresolved reference to function
+// `f'" gives f), or "" for any other message.
+std::string unresolved_function(const std::string& message) {
+  const std::string_view prefix = "unresolved reference to function `";
+  if (message.rfind(prefix, 0) != 0 || message.back() != '\'') return "";
+  return message.substr(prefix.size(), message.size() - prefix.size() - 1);
+}
+
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
   Diagnostic d;
   d.severity = severity;
@@ -210,9 +218,11 @@ std::string parse_in_child(const Source& source, const std::string* active_text)
     verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog();
     // Linking finds what compiling cannot: a function declared and called but
     // defined nowhere (a scene that promises RM_MAP_BOUND without mapBound).
-    glslang::TProgram program;
-    program.addShader(&shader);
-    if (parsed && !program.link(EShMsgDefault)) verdict += program.getInfoLog();
+    if (parsed) {
+      glslang::TProgram program;
+      program.addShader(&shader);
+      if (!program.link(EShMsgDefault)) verdict += program.getInfoLog();
+    }
     if (active_text) verdict += '\0' + preprocessed(*active_text).value_or("");
   });
   return verdict;
@@ -420,13 +430,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     LogLine line(text);
     if (const auto severity = line.severity("error: ", "warning: ")) d.severity = *severity;
     d.message = line.rest();
-    const std::string_view mesa_unresolved = "unresolved reference to function `";
-    const bool unresolved = d.message.rfind(mesa_unresolved, 0) == 0 && d.message.back() == '\'';
-    const auto at = unresolved ? first_mention_of_function(d.message.substr(mesa_unresolved.size(),
-                                                                            d.message.size() - mesa_unresolved.size() - 1),
-                                                           source)
-                               : std::nullopt;
-    if (at) {
+    if (const auto at = first_mention_of_function(unresolved_function(d.message), source)) {
       const Severity severity = d.severity;
       std::string message = std::move(d.message);
       d = locate(source, severity, at->first, at->second, std::move(message));
