@@ -245,6 +245,17 @@ int accuracy_command(const AccuracyRequest& input) {
     std::cerr << "raymarching: error: '" << req.out.string() << "': " << ec.message() << '\n';
     return kExitUsage;
   }
+  // The reference preset's knobs as -D's: a scene's own RM_SHADOW_STEPS 32
+  // (or a -D of it) must not lower the yardstick it is measured against.
+  // Read before the GL context starts its threads (the preprocessor runs in a
+  // forked child); without them the reference would be the scene's own.
+  std::vector<Define> reference_knobs = preset_knobs("reference", req.source.shaderlib_dir);
+  if (reference_knobs.empty()) {
+    std::cerr << "raymarching: error: accuracy: cannot read the reference preset's knobs from "
+              << (req.source.shaderlib_dir / "rm" / "quality.glsl").string() << '\n';
+    return kExitUsage;
+  }
+  reference_knobs.push_back({"RM_QUALITY", preset_macro("reference")});
   std::string error;
   auto context = EglContext::create(&error);
   if (!context) {
@@ -265,10 +276,6 @@ int accuracy_command(const AccuracyRequest& input) {
 
   Bench bench(req);
   std::cerr << "accuracy: rendering the reference (preset reference)...\n";
-  // The reference preset's knobs as -D's: a scene's own RM_SHADOW_STEPS 32
-  // (or a -D of it) must not lower the yardstick it is measured against.
-  std::vector<Define> reference_knobs = preset_knobs("reference", req.source.shaderlib_dir);
-  reference_knobs.push_back({"RM_QUALITY", preset_macro("reference")});
   const Setting reference_setting{"reference", "reference", reference_knobs, {}};
   const Setting reference_centre{"reference", "reference", with_define(reference_knobs, "RM_SAMPLES", "1"), {}};
   const auto reference = bench.render(reference_setting, &error, &reference_centre);
