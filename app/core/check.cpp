@@ -216,13 +216,6 @@ std::string parse_in_child(const Source& source, const std::string* active_text)
     DeepestNode deepest;
     if (tree && tree->getTreeRoot()) tree->getTreeRoot()->traverse(&deepest);
     verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog();
-    // Linking finds what compiling cannot: a function declared and called but
-    // defined nowhere (a scene that promises RM_MAP_BOUND without mapBound).
-    if (parsed) {
-      glslang::TProgram program;
-      program.addShader(&shader);
-      if (!program.link(EShMsgDefault)) verdict += program.getInfoLog();
-    }
     if (active_text) verdict += '\0' + preprocessed(*active_text).value_or("");
   });
   return verdict;
@@ -377,23 +370,6 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
     if (text.empty()) continue;
     if (format == LogFormat::Glslang) {
-      // The linker: "ERROR: Linking fragment stage: No function definition (body) found: ",
-      // then the function's mangled name on a line of its own, "    mapBound(vf3;".
-      if (text.rfind("ERROR: Linking fragment stage: No function definition (body) found:", 0) == 0) {
-        std::string mangled;
-        std::getline(in, mangled);
-        const size_t begin = mangled.find_first_not_of(" \t");
-        const std::string name = begin == std::string::npos ? "" : mangled.substr(begin, mangled.find('(') - begin);
-        const std::string message = "function '" + name + "' is declared and called but defined nowhere";
-        const auto at = first_mention_of_function(name, source);
-        Diagnostic d = at ? locate(source, Severity::Error, at->first, at->second, message)
-                          : Diagnostic{Severity::Error, source.files.empty() ? std::string() : source.files.front().string(),
-                                       0, 0, message};
-        // The linker says it once per call: say it once.
-        if (std::none_of(out.begin(), out.end(), [&](const Diagnostic& e) { return e.str() == d.str(); }))
-          out.push_back(std::move(d));
-        continue;
-      }
       // "ERROR: 0:12: 'foo' : undeclared identifier", then "ERROR: 1 compilation errors. ..."
       LogLine line(text);
       const auto severity = line.severity("ERROR: ", "WARNING: ");

@@ -35,22 +35,6 @@ TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   EXPECT_EQ(diags[0].column, 12);
 }
 
-// glslang links as well as compiles: a function called but defined nowhere
-// is an error before the driver sees it, at its prototype's line.
-TEST(Check, AFunctionWithoutABodyIsAnErrorAtItsPrototype) {
-  TempDir dir;
-  write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
-                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(f), twice(f)); }\n");
-  // Called from two places: the linker reports it twice, the host once.
-  write_file(dir / "lib.glsl", "// helper(p): the scene's own\n\nvec2 helper(vec2 p);\n"
-                               "vec2 twice(vec2 p) { return helper(p); }\n");
-  Diagnostics diags;
-  check_scene(dir / "scene.frag", {}, &diags);
-  ASSERT_EQ(count_errors(diags), 1) << join(diags);
-  EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() +
-                                ":3:6: error: function 'helper' is declared and called but defined nowhere");
-}
-
 TEST(Check, ValidShaderOfEachKindHasNoErrors) {
   TempDir dir;
   write_file(dir / "toy.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, sin(iTime), 1.0); }\n");
