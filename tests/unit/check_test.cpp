@@ -69,6 +69,29 @@ TEST(Check, WrongMainImageSignatureIsAttributedToTheScene) {
   EXPECT_NE(diags[0].message.find("the host adds"), std::string::npos);
 }
 
+// A function declared but defined nowhere: the driver's link refuses it, so
+// validation does too, once, at its first call. Mesa refuses such a call even
+// in a function that main never reaches, and so does validation.
+TEST(Check, CallToAFunctionWithNoBodyIsAnErrorAtItsFirstCall) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
+                                 "float unused(vec2 p) {\n  return helper(p) + helper(p.yx);\n}\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(f)); }\n");
+  write_file(dir / "lib.glsl", "float helper(vec2 p);\nfloat defined(vec2 p);\nfloat defined(vec2 p) { return p.x; }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_EQ(count_errors(diags), 1) << join(diags);
+  EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":3:10: error: 'helper' : function is called but no body defines it");
+}
+
+TEST(Check, PrototypeThatNothingCallsIsNoError) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "float helper(vec2 p);\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(count_errors(diags), 0) << join(diags);
+}
+
 TEST(MapLog, MesaCompileMessagesAreMappedWithColumn) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
