@@ -95,8 +95,11 @@ int render_command(const RenderRequest& req) {
   for (size_t i = 0; i < req.channels.size(); ++i) {
     const auto& path = req.channels[i];
     std::string error;
+    // Named as the user gave it: on the command line, or recorded in the take.
+    const bool recorded = req.take && path == req.take->channels[i];
+    const std::string given = recorded ? "take: channel " + std::to_string(i) : "--channel" + std::to_string(i);
     if (!path.empty() && !check_channel_image(path, &error))
-      return fail("--channel" + std::to_string(i) + " '" + path.string() + "': " + error, kExitUsage);
+      return fail(given + " '" + path.string() + "': " + error, kExitUsage);
   }
 
   const ProjectFiles from = project_files(req.scene, req.media);

@@ -148,6 +148,13 @@ TEST_F(Take, ReplaysWithTheChannelImagesItWasRecordedWith) {
       test::run_binary(take + " --channel0 " + (dir_ / "blue.png").string() + " -o " + (dir_ / "b_%d.exr").string());
   ASSERT_EQ(given.status, 0) << given.err;
   expect_pixel(pixel("b_%d.exr", 0), {0.0f, 0.0f, 1.0f, 1.0f});
+  // The recorded image gone: the error names the take's channel, not an option
+  // the command line never gave.
+  std::filesystem::remove(dir_ / "red.png");
+  const test::Outcome gone = test::run_binary(take + " -o " + (dir_ / "g_%d.exr").string());
+  EXPECT_EQ(gone.status, 2);
+  EXPECT_EQ(gone.err, "raymarching: error: take: channel 0 '" + (dir_ / "red.png").string() + "': no such file\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "g_0.exr"));
 }
 
 // A long take is larger than a shader may be: its own limit is not the shaders' 16 MiB.
