@@ -22,4 +22,12 @@ std::vector<unsigned char> to_rgba8(const Image& image) {
   return bytes;
 }
 
+void paste(Image& whole, const Image& piece, int x0, int y0) {
+  // piece row 0 is its top, which is row whole.height - (y0 + piece.height) of whole.
+  const int top = whole.height - (y0 + piece.height);
+  for (int y = 0; y < piece.height; ++y)
+    std::copy_n(&piece.rgba[static_cast<size_t>(y) * piece.width * 4], static_cast<size_t>(piece.width) * 4,
+                &whole.rgba[(static_cast<size_t>(top + y) * whole.width + x0) * 4]);
+}
+
 }  // namespace rm

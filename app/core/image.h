@@ -19,4 +19,8 @@ struct Image {
 // as 0, rounded to the nearest of 256 steps.
 std::vector<unsigned char> to_rgba8(const Image& image);
 
+// Copies `piece` into `whole` with its bottom left corner at GL's (x0, y0)
+// (origin at the bottom left): a tile of a picture drawn in parts.
+void paste(Image& whole, const Image& piece, int x0, int y0);
+
 }  // namespace rm

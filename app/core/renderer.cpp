@@ -159,12 +159,7 @@ Image Renderer::render_image(const Program& program, FrameInputs inputs, const C
       inputs.frag_coord_offset = glm::vec2(x0, y0);
       draw_samples(target, part);
       glFinish();  // bound the work queued per tile on software renderers
-      Image piece = target.read();
-      // piece row 0 is its top, which is full-image row size.y - (y0 + part.y).
-      const int top = size.y - (y0 + part.y);
-      for (int y = 0; y < part.y; ++y)
-        std::copy_n(&piece.rgba[static_cast<size_t>(y) * part.x * 4], static_cast<size_t>(part.x) * 4,
-                    &full.rgba[(static_cast<size_t>(top + y) * size.x + x0) * 4]);
+      paste(full, target.read(), x0, y0);
     }
   }
   return full;

@@ -1,8 +1,12 @@
 // A screenshot (F12) drawn in tiles between the window's own, a slice of the
 // frame budget at a time, so that a shot of a heavy shader does not hold the
-// window: keys, saves and Q are answered while it is drawn.
+// window: keys, saves and Q are answered while it is drawn. A shot larger
+// than the renderer's largest target is drawn in parts of at most that
+// size, each in tiles, and put together in memory.
 #pragma once
 #include <filesystem>
+#include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -17,10 +21,10 @@ namespace rm {
 
 class TiledShot {
  public:
-  // The image pass of `inputs` at `size` (at most the renderer's largest
-  // tile), in tiles of about tile_ms at per_pixel_ms (0: unknown, a probe
-  // tile first), for `path` with `metadata`.
-  TiledShot(const FrameInputs& inputs, glm::ivec2 size, double tile_ms, double per_pixel_ms,
+  // The image pass of `inputs` at `size`, in parts of at most max_part
+  // pixels a side, in tiles of about tile_ms at per_pixel_ms (0: unknown, a
+  // probe tile first), for `path` with `metadata`.
+  TiledShot(const FrameInputs& inputs, glm::ivec2 size, int max_part, double tile_ms, double per_pixel_ms,
             std::filesystem::path path, Metadata metadata);
 
   // Draws tiles for about slice_ms; true once the picture is whole.
@@ -28,17 +32,21 @@ class TiledShot {
   // A new program: the shot is drawn again from its first tile.
   void restart();
 
-  Image read() const { return target_.read(); }
+  const Image& read() const { return whole_; }  // once draw() returned true
   const std::filesystem::path& path() const { return path_; }
   const Metadata& metadata() const { return metadata_; }
   int tiles() const { return tiles_; }  // drawn so far, since the last restart
 
  private:
+  void start_part(size_t index);  // its target and its tiles, from the first
+
   FrameInputs inputs_;
-  glm::ivec2 size_;
   double tile_ms_;
-  RenderTarget target_;
-  TilePlan plan_;
+  std::vector<glm::ivec4> parts_;  // x, y, width, height in GL's coordinates
+  size_t part_ = 0;                // the one being drawn
+  std::unique_ptr<RenderTarget> target_;  // the part's
+  TilePlan plan_;                         // the part's tiles
+  Image whole_;
   std::filesystem::path path_;
   Metadata metadata_;
   int tiles_ = 0;

@@ -768,12 +768,13 @@ class WindowApp {
     if (take_.recording()) metadata.emplace_back("raymarching:take_frame", std::to_string(take_.current_frame()));
     if (refined) {
       save_shot(picture_.read(), options_.shot_dir / name, metadata);
-    } else if (budget_.budget_ms() > 0 && std::max(size.x, size.y) <= renderer_.max_tile()) {
+    } else if (budget_.budget_ms() > 0) {
       // Drawn in tiles between the window's own (continue_shot), from the
       // cost per pixel the window measured.
-      shots_.emplace_back(in, size, budget_.budget_ms(), measured_per_pixel_ms(glm::ivec2(inputs_.resolution)),
-                          options_.shot_dir / name, std::move(metadata));
-    } else {  // with the budget off, or larger than a tile: at once
+      shots_.emplace_back(in, size, renderer_.max_tile(), budget_.budget_ms(),
+                          measured_per_pixel_ms(glm::ivec2(inputs_.resolution)), options_.shot_dir / name,
+                          std::move(metadata));
+    } else {  // with the budget off, as the window's own pictures: at once
       save_shot(graph_.render_image(project_, in, size), options_.shot_dir / name, metadata);
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }

@@ -1,0 +1,56 @@
+// F12's shot, drawn a slice at a time between the window's frames: once
+// whole it is the picture `render` draws, also when it is larger than the
+// renderer's largest target and comes in parts.
+#include "window/tiled_shot.h"
+
+#include <gtest/gtest.h>
+
+#include "egl_fixture.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+class TiledShotTest : public test::EglTest {
+ protected:
+  TempDir dir_;
+  Renderer renderer_;
+  FrameGraph graph_{renderer_};
+};
+
+TEST_F(TiledShotTest, AShotLargerThanTheLargestTargetIsDrawnInPartsAndEqualsTheWholePicture) {
+  write_file(dir_ / "t.frag",
+             "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, fract(f.x * 0.37 + f.y * 0.11), 1.0); }\n");
+  Project project(dir_ / "t.frag", SourceOptions{});
+  ASSERT_EQ(project.reload(), ReloadStatus::Swapped) << join(project.diagnostics());
+  std::string error;
+  ASSERT_TRUE(graph_.update(project, &error)) << error;
+  const glm::ivec2 size(37, 23);
+  FrameInputs in;
+  in.resolution = glm::vec3(size, 1.0f);
+  const Image whole = graph_.render_image(project, in, size);
+
+  renderer_.limit_tile(8);  // 5 x 3 parts
+  TiledShot shot(in, size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "shot.png", {});
+  int slices = 0;
+  while (!shot.draw(graph_, project, 0.0)) ASSERT_LT(++slices, 1000);  // a slice of 0 ms: one tile each
+  EXPECT_GE(slices, 15) << "one slice per part at least";
+  EXPECT_EQ(shot.read().width, size.x);
+  EXPECT_EQ(shot.read().height, size.y);
+  EXPECT_EQ(shot.read().rgba, whole.rgba);
+
+  // A new program part way: drawn again from the first tile, and whole again.
+  TiledShot again(in, size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "again.png", {});
+  for (int i = 0; i < 7; ++i) ASSERT_FALSE(again.draw(graph_, project, 0.0));
+  again.restart();
+  EXPECT_EQ(again.tiles(), 0);
+  while (!again.draw(graph_, project, 1e9)) {
+  }
+  EXPECT_EQ(again.read().rgba, whole.rgba);
+}
+
+}  // namespace
+}  // namespace rm
