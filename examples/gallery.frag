@@ -40,13 +40,33 @@ mat3 turn;        // every exhibit turns about y
 float swing;      // sin(t): the twist's rate, the onion's cut, the carving's size
 float bob;        // the smooth-union sphere's height
 float twistLipschitz;
+// The lights too (the first follows the mouse): the library's light loop
+// calls light(i) with i unknown, and llvmpipe runs both branches of
+// lightNow() for each; in animate()'s loop i is a constant (2 ms a frame).
+RmLight lights[3];
+
+// Light i at this time and mouse.
+RmLight lightNow(int i) {
+  float a = 0.4 * iTime + RM_TAU * float(i) / 3.0;
+  vec3 hue = 0.6 + 0.4 * cos(vec3(0.0, 2.1, 4.2) + 0.7 * iTime + 2.1 * float(i));
+  if (i == 0) {  // the key light: near white, following the mouse
+    vec3 toLight = rmMouseLightDirection(iMouse, iResolution.xy, vec3(0.4, 0.8, 0.5));
+    return rmDirectionalLight(toLight, 0.8 * mix(vec3(1.0), hue, 0.25));
+  }
+  return rmPointLight(vec3(3.0 * cos(a), 2.5, 3.0 * sin(a)), 5.0 * hue * hue);
+}
 
 void animate() {
   turn = rmRotationY(0.5 * iTime);
   swing = sin(iTime);
   bob = 0.25 * sin(2.0 * iTime);
   twistLipschitz = opTwistLipschitz(2.0, 0.55);
+  for (int i = 0; i < 3; ++i) lights[i] = lightNow(i);
 }
+
+// Radius of the sphere about its slot's centre that holds each exhibit, turned
+// and animated (the smooth union's sphere bobs up to 0.25 and bulges k / 4).
+const float kExhibitRadius[9] = float[](0.43, 0.39, 0.51, 0.47, 0.5, 0.42, 0.52, 0.41, 0.54);
 
 // Object i, centred at the origin, resting 0.55 above its plinth's base.
 float exhibit(int i, vec3 p) {
@@ -57,9 +77,10 @@ float exhibit(int i, vec3 p) {
     case 1: return sdCappedTorus(p.xzy, vec2(sin(2.4), cos(2.4)), 0.3, 0.08);
     case 2: return sdRoundCone(p + vec3(0.0, 0.25, 0.0), 0.25, 0.1, 0.5);
     // transforms: twist (in its bound), polar repetition, onion cut open
-    case 3: {  // twist stretches space: its constant holds within 0.55 of the axis
-      float bound = sdCappedCylinder(p, 0.25, 0.45);
-      if (bound > 0.3) return bound;
+    case 3: {  // twist stretches space: its constant holds within 0.55 of the axis,
+               // so outside that sphere the distance is its bounding sphere's
+      float bound = length(p) - kExhibitRadius[3];
+      if (bound > 0.55 - kExhibitRadius[3]) return bound;
       return sdBox(opTwist(p, 2.0 * swing), vec3(0.15, 0.4, 0.15)) / twistLipschitz;
     }
     case 4: {
@@ -95,10 +116,6 @@ RmHit scene(vec3 p) {
 
 float map(vec3 p) { return scene(p).d; }
 
-// Radius of the sphere about its slot's centre that holds each exhibit, turned
-// and animated (the smooth union's sphere bobs up to 0.25 and bulges k / 4).
-const float kExhibitRadius[9] = float[](0.43, 0.39, 0.51, 0.47, 0.5, 0.42, 0.52, 0.41, 0.54);
-
 // The plinths exactly, and a bound of the exhibits: the distance to their spheres.
 vec2 mapBound(vec3 p) {
   int i;
@@ -106,15 +123,7 @@ vec2 mapBound(vec3 p) {
   return vec2(plinth(q), length(q) - kExhibitRadius[i]);
 }
 
-RmLight light(int i) {
-  float a = 0.4 * iTime + RM_TAU * float(i) / 3.0;
-  vec3 hue = 0.6 + 0.4 * cos(vec3(0.0, 2.1, 4.2) + 0.7 * iTime + 2.1 * float(i));
-  if (i == 0) {  // the key light: near white, following the mouse
-    vec3 toLight = rmMouseLightDirection(iMouse, iResolution.xy, vec3(0.4, 0.8, 0.5));
-    return rmDirectionalLight(toLight, 0.8 * mix(vec3(1.0), hue, 0.25));
-  }
-  return rmPointLight(vec3(3.0 * cos(a), 2.5, 3.0 * sin(a)), 5.0 * hue * hue);
-}
+RmLight light(int i) { return lights[i]; }
 
 RmMaterial material(vec3 p, vec3 n) {
   // On a plinth or not: the plinth alone tells, without all nine exhibits.
