@@ -292,7 +292,9 @@ int accuracy_command(const AccuracyRequest& input) {
     const Setting& s = settings[i];
     std::cerr << "accuracy: [" << i + 1 << "/" << settings.size() << "] " << s.label() << '\n';
     Measured m{s};
-    if (i > 0 && bench.expanded(s) == default_text) {  // the scene does not use this knob
+    // The scene does not use this knob: the same text (a text that could not
+    // be expanded is no evidence, and is rendered).
+    if (i > 0 && !default_text.empty() && bench.expanded(s) == default_text) {
       m = rows.front();
       m.setting = s;
       m.no_effect = true;
