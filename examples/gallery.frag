@@ -40,28 +40,19 @@ mat3 turn;        // every exhibit turns about y
 float swing;      // sin(t): the twist's rate, the onion's cut, the carving's size
 float bob;        // the smooth-union sphere's height
 float twistLipschitz;
-// The lights too (the first follows the mouse): the library's light loop
-// calls light(i) with i unknown, and llvmpipe runs both branches of
-// lightNow() for each; in animate()'s loop i is a constant (2 ms a frame).
-RmLight lights[3];
-
-// Light i at this time and mouse.
-RmLight lightNow(int i) {
-  float a = 0.4 * iTime + RM_TAU * float(i) / 3.0;
-  vec3 hue = 0.6 + 0.4 * cos(vec3(0.0, 2.1, 4.2) + 0.7 * iTime + 2.1 * float(i));
-  if (i == 0) {  // the key light: near white, following the mouse
-    vec3 toLight = rmMouseLightDirection(iMouse, iResolution.xy, vec3(0.4, 0.8, 0.5));
-    return rmDirectionalLight(toLight, 0.8 * mix(vec3(1.0), hue, 0.25));
-  }
-  return rmPointLight(vec3(3.0 * cos(a), 2.5, 3.0 * sin(a)), 5.0 * hue * hue);
-}
+// The lights' colours, and the key light's direction from the mouse: the
+// library's light loop calls light(i) once a light and shading, and llvmpipe
+// runs both of its branches each time (2 ms a frame when worked out there).
+vec3 hues[3];
+vec3 keyDirection;
 
 void animate() {
   turn = rmRotationY(0.5 * iTime);
   swing = sin(iTime);
   bob = 0.25 * sin(2.0 * iTime);
   twistLipschitz = opTwistLipschitz(2.0, 0.55);
-  for (int i = 0; i < 3; ++i) lights[i] = lightNow(i);
+  for (int i = 0; i < 3; ++i) hues[i] = 0.6 + 0.4 * cos(vec3(0.0, 2.1, 4.2) + 0.7 * iTime + 2.1 * float(i));
+  keyDirection = rmMouseLightDirection(iMouse, iResolution.xy, vec3(0.4, 0.8, 0.5));
 }
 
 // Radius of the sphere about its slot's centre that holds each exhibit, turned
@@ -123,7 +114,11 @@ vec2 mapBound(vec3 p) {
   return vec2(plinth(q), length(q) - kExhibitRadius[i]);
 }
 
-RmLight light(int i) { return lights[i]; }
+RmLight light(int i) {
+  if (i == 0) return rmDirectionalLight(keyDirection, 0.8 * mix(vec3(1.0), hues[0], 0.25));  // near white
+  float a = 0.4 * iTime + RM_TAU * float(i) / 3.0;
+  return rmPointLight(vec3(3.0 * cos(a), 2.5, 3.0 * sin(a)), 5.0 * hues[i] * hues[i]);
+}
 
 RmMaterial material(vec3 p, vec3 n) {
   // On a plinth or not: the plinth alone tells, without all nine exhibits.
