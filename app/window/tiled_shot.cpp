@@ -11,7 +11,6 @@ TiledShot::TiledShot(const FrameInputs& inputs, glm::ivec2 size, int max_part, d
     : inputs_(inputs),
       tile_ms_(tile_ms),
       plan_(size, tile_ms, per_pixel_ms),
-      whole_{size.x, size.y, std::vector<float>(static_cast<size_t>(size.x) * size.y * 4)},
       path_(std::move(path)),
       metadata_(std::move(metadata)) {
   inputs_.resolution = glm::vec3(size, 1.0f);
@@ -36,7 +35,13 @@ bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms)
   while (part_ < parts_.size()) {
     const glm::ivec4 part = parts_[part_];
     if (plan_.done()) {  // the part is whole: into the picture, and on to the next
-      paste(whole_, target_->read(), part.x, part.y);
+      if (parts_.size() == 1) {
+        whole_ = target_->read();  // the picture itself: no second copy of it
+      } else {
+        const glm::ivec2 size(inputs_.resolution);
+        if (whole_.rgba.empty()) whole_ = Image{size.x, size.y, std::vector<float>(static_cast<size_t>(size.x) * size.y * 4)};
+        paste(whole_, target_->read(), part.x, part.y);
+      }
       if (part_ + 1 == parts_.size()) {
         part_ = parts_.size();
         break;

@@ -46,7 +46,7 @@ class TiledShot {
   size_t part_ = 0;                // the one being drawn
   std::unique_ptr<RenderTarget> target_;  // the part's
   TilePlan plan_;                         // the part's tiles
-  Image whole_;
+  Image whole_;  // once drawn; a shot in parts is put together here
   std::filesystem::path path_;
   Metadata metadata_;
   int tiles_ = 0;
