@@ -59,6 +59,20 @@ void animate() {
 // and animated (the smooth union's sphere bobs up to 0.25 and bulges k / 4).
 const float kExhibitRadius[9] = float[](0.43, 0.39, 0.51, 0.47, 0.5, 0.42, 0.52, 0.41, 0.54);
 
+// The front row: a sphere and a box joined by a smooth union (6), cut to
+// their smooth intersection (7), and a rounded box minus a sphere (8). Each
+// slot sizes its sphere and box, and the three share one evaluation of them:
+// llvmpipe evaluates every case of exhibit()'s switch.
+float frontRow(int i, vec3 p) {
+  vec3 sphereCentre = i == 6 ? vec3(0.0, bob, 0.0) : vec3(0.0);
+  float sphereRadius = i == 6 ? 0.22 : i == 7 ? 0.4 : 0.33 + 0.05 * swing;
+  vec3 boxSize = i == 6 ? vec3(0.3, 0.08, 0.3) : vec3(i == 7 ? 0.3 : 0.32);
+  float sphere = sdSphere(p - sphereCentre, sphereRadius), box = sdRoundBox(p, boxSize, i == 8 ? 0.04 : 0.0);
+  if (i == 6) return opSmoothUnion(sphere, box, 0.15);
+  if (i == 7) return opSmoothIntersection(sphere, box, 0.08);
+  return opSmoothSubtraction(box, sphere, 0.05);
+}
+
 // Object i, centred at the origin, resting 0.55 above its plinth's base.
 float exhibit(int i, vec3 p) {
   p = opRotate(p, turn);
@@ -71,18 +85,16 @@ float exhibit(int i, vec3 p) {
     case 3: {  // twist stretches space: its constant holds within 0.55 of the axis,
                // so outside that sphere the distance is its bounding sphere's
       float bound = length(p) - kExhibitRadius[3];
-      if (bound > 0.55 - kExhibitRadius[3]) return bound;
-      return sdBox(opTwist(p, 2.0 * swing), vec3(0.15, 0.4, 0.15)) / twistLipschitz;
+      float twisted = sdBox(opTwist(p, 2.0 * swing), vec3(0.15, 0.4, 0.15)) / twistLipschitz;
+      return bound > 0.55 - kExhibitRadius[3] ? bound : twisted;  // a select: a CPU renderer runs both sides of an if
     }
     case 4: {
       vec2 q = opRepeatPolarMirror(p.xz, 8);  // each capsule is symmetric about its own plane
       return sdCapsule(vec3(q.x, p.y, q.y), vec3(0.15, -0.3, 0.0), vec3(0.32, 0.3, 0.0), 0.05);
     }
     case 5: return opSubtraction(opOnion(sdSphere(p, 0.38), 0.03), p.y - 0.15 * swing);
-    // smooth booleans
-    case 6: return opSmoothUnion(sdSphere(p - vec3(0.0, bob, 0.0), 0.22), sdBox(p, vec3(0.3, 0.08, 0.3)), 0.15);
-    case 7: return opSmoothIntersection(sdSphere(p, 0.4), sdBox(p, vec3(0.3)), 0.08);
-    default: return opSmoothSubtraction(sdRoundBox(p, vec3(0.32), 0.04), sdSphere(p, 0.33 + 0.05 * swing), 0.05);
+    // smooth booleans, whose sphere and box the three evaluate once
+    default: return frontRow(i, p);
   }
 }
 

@@ -101,9 +101,9 @@ float sdRoundCone(vec3 p, float r1, float r2, float h) {
   float a = sqrt(1.0 - b * b);
   vec2 q = vec2(length(p.xz), p.y);
   float k = dot(q, vec2(-b, a));
-  if (k < 0.0) return length(q) - r1;
-  if (k > a * h) return length(q - vec2(0.0, h)) - r2;
-  return dot(q, vec2(a, b)) - r1;
+  // The bottom sphere, the top one or the cone between them, by where q
+  // projects: selects, as CPU renderers run every branch anyway.
+  return k < 0.0 ? length(q) - r1 : k > a * h ? length(q - vec2(0.0, h)) - r2 : dot(q, vec2(a, b)) - r1;
 }
 
 // Ball of radius ra cut to the cone of half-angle with sc = (sin, cos) around +y. exact
@@ -143,13 +143,13 @@ float sdEllipsoid(vec3 p, vec3 r) {
 float sdOctahedron(vec3 p, float s) {
   p = abs(p);
   float m = p.x + p.y + p.z - s;
-  vec3 q;
-  if (3.0 * p.x < m) q = p.xyz;
-  else if (3.0 * p.y < m) q = p.yzx;
-  else if (3.0 * p.z < m) q = p.zxy;
-  else return m * 0.57735027;  // the nearest feature is the face
+  // The nearest feature is the face when no coordinate is below m / 3, else the
+  // edge or vertex in the first such coordinate's sector. Selects, not
+  // branches: a CPU renderer runs every branch anyway.
+  vec3 q = 3.0 * p.x < m ? p.xyz : 3.0 * p.y < m ? p.yzx : p.zxy;
   float k = clamp(0.5 * (q.z - q.y + s), 0.0, s);
-  return length(vec3(q.x, q.y - s + k, q.z - k));
+  float edge = length(vec3(q.x, q.y - s + k, q.z - k));
+  return 3.0 * rmMinComponent(p) < m ? edge : m * 0.57735027;
 }
 
 // Square pyramid: unit base (half-side 0.5) on y = 0, apex at height h. exact
