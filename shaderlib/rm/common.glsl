@@ -1,6 +1,6 @@
 // rm/common.glsl: constants and small helpers the other modules share.
 // Provides: RM_PI, RM_TAU, rmMaxComponent, rmMinComponent, rmDot2, rmNdot,
-//   rmOrthogonalIntersection, rmSafeNormalize.
+//   rmOrthogonalIntersection, rmSafeNormalize, rmSinCosQuarter.
 // Needs: nothing.
 // Naming: sd* are signed distances, op* operators on distances or on points,
 // rm* everything else; Rm* are types and RM_* macros.
@@ -36,6 +36,17 @@ float rmOrthogonalIntersection(float a, float b) {
 vec3 rmSafeNormalize(vec3 v, vec3 fallback) {
   float len2 = dot(v, v);
   return len2 > 1e-30 ? v * inversesqrt(len2) : fallback;
+}
+
+// (sin a, cos a) for abs(a) <= pi/2 from their Taylor polynomials, within 4e-6;
+// beyond, a is held at +-pi/2. llvmpipe computes sin() and cos() with their
+// full range reduction, several times the cost of these few multiply-adds.
+vec2 rmSinCosQuarter(float a) {
+  a = clamp(a, -0.5 * RM_PI, 0.5 * RM_PI);
+  float a2 = a * a;
+  float s = a * (1.0 + a2 * (-1.0 / 6.0 + a2 * (1.0 / 120.0 + a2 * (-1.0 / 5040.0 + a2 * (1.0 / 362880.0)))));
+  float c = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24.0 + a2 * (-1.0 / 720.0 + a2 * (1.0 / 40320.0 + a2 * (-1.0 / 3628800.0)))));
+  return vec2(s, c);
 }
 
 #endif  // RM_COMMON_GLSL

@@ -2,6 +2,9 @@
 // state (see field_contract.h); repetition stays exact far from the origin.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "field_contract.h"
@@ -123,6 +126,8 @@ std::vector<Field> fields() {
        }},
       // L for the sampled region: the farthest point from the axis is extent * sqrt(2) away.
       {"Twist", "sdBox(opTwist(p, 1.2), vec3(0.5, 1.0, 0.3))", K::Approximate, nullptr, twist_l},
+      // Samples reach |1.2 y| = 1.92: beyond a quarter turn, where the turn holds.
+      {"TwistQuarter", "sdBox(opTwistQuarter(p, 1.2), vec3(0.5, 1.0, 0.3))", K::Approximate, nullptr, twist_l},
       {"Bend", "sdBox(opBend(p, 0.8), vec3(1.0, 0.2, 0.4))", K::Approximate, nullptr, bend_l},
       {"Elongate", "sdSphere(opElongate(p, vec3(0.5, 0.2, 0.3)), 0.4)", K::ExactOutside,
        [](dvec3 p) { return g::box(p, {0.5, 0.2, 0.3}) - 0.4; }},
@@ -153,6 +158,38 @@ TEST_F(EglTest, TwistAndBendConstantsMatchTheirFormulas) {
   ASSERT_TRUE(got) << error;
   EXPECT_NEAR((*got)[0].x, 0.5 * (2.4 + std::sqrt(2.4 * 2.4 + 4.0)), 1e-5);
   EXPECT_NEAR((*got)[0].y, 2.6, 1e-5);
+}
+
+// rmSinCosQuarter is sin and cos within 4e-6 up to a quarter turn and holds
+// there beyond; so opTwistQuarter is opTwist up to a quarter turn, and beyond
+// turns by a quarter turn.
+TEST_F(EglTest, QuarterTurnPolynomialsMatchSinAndCos) {
+  std::vector<glm::vec4> points;
+  for (int i = 0; i <= 2000; ++i) {
+    const float a = -2.5f + 5.0f * static_cast<float>(i) / 2000.0f;
+    points.emplace_back(a, 0.0f, 0.0f, 0.0f);
+  }
+  std::string error;
+  const auto got = probe("#include <rm/transforms.glsl>", "vec4(rmSinCosQuarter(P.x), opTwistQuarter(vec3(1.5, P.x / 0.8, -0.7), 0.8).xz)",
+                         points, &error);
+  ASSERT_TRUE(got) << error;
+  const auto twist = probe("#include <rm/transforms.glsl>", "vec4(opTwist(vec3(1.5, P.x / 0.8, -0.7), 0.8).xz, 0.0, 0.0)",
+                           points, &error);
+  ASSERT_TRUE(twist) << error;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double a = points[i].x;
+    const double held = std::clamp(a, -M_PI / 2.0, M_PI / 2.0);
+    const glm::vec4 r = (*got)[i];
+    EXPECT_NEAR(r.x, std::sin(held), 4e-6) << "sin at " << a;
+    EXPECT_NEAR(r.y, std::cos(held), 4e-6) << "cos at " << a;
+    // The xz plane turned by `held`, as rmRotation2 turns it.
+    EXPECT_NEAR(r.z, std::cos(held) * 1.5 - std::sin(held) * -0.7, 1e-5) << "twisted x at " << a;
+    EXPECT_NEAR(r.w, std::sin(held) * 1.5 + std::cos(held) * -0.7, 1e-5) << "twisted z at " << a;
+    if (std::abs(a) <= M_PI / 2.0) {
+      EXPECT_NEAR(r.z, (*twist)[i].x, 1e-5) << "opTwist's x at " << a;
+      EXPECT_NEAR(r.w, (*twist)[i].y, 1e-5) << "opTwist's z at " << a;
+    }
+  }
 }
 
 class Repetition : public EglTest {};
