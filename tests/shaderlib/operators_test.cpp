@@ -170,11 +170,12 @@ TEST_F(EglTest, QuarterTurnPolynomialsMatchSinAndCos) {
     points.emplace_back(a, 0.0f, 0.0f, 0.0f);
   }
   std::string error;
-  const auto got = probe("#include <rm/transforms.glsl>", "vec4(rmSinCosQuarter(P.x), opTwistQuarter(vec3(1.5, P.x / 0.8, -0.7), 0.8).xz)",
-                         points, &error);
+  // The point (1.5, y, -0.7) with 0.8 y = a: twisted by a.
+  const auto got = probe("#include <rm/transforms.glsl>",
+                         "vec4(rmSinCosQuarter(P.x), opTwistQuarter(vec3(1.5, P.x / 0.8, -0.7), 0.8).xz)", points, &error);
   ASSERT_TRUE(got) << error;
-  const auto twist = probe("#include <rm/transforms.glsl>", "vec4(opTwist(vec3(1.5, P.x / 0.8, -0.7), 0.8).xz, 0.0, 0.0)",
-                           points, &error);
+  const auto twist = probe("#include <rm/transforms.glsl>",
+                           "vec4(opTwist(vec3(1.5, P.x / 0.8, -0.7), 0.8).xz, 0.0, 0.0)", points, &error);
   ASSERT_TRUE(twist) << error;
   for (size_t i = 0; i < points.size(); ++i) {
     const double a = points[i].x;
