@@ -1,31 +1,16 @@
 #include "core/check.h"
 
-#include <glslang/Include/intermediate.h>
-#include <glslang/MachineIndependent/localintermediate.h>
-#include <glslang/Public/ResourceLimits.h>
-#include <glslang/Public/ShaderLang.h>
-#include <pthread.h>
-
 #include <algorithm>
 #include <cstring>
-#include <functional>
-#include <map>
-#include <mutex>
-#include <set>
 #include <sstream>
 #include <string_view>
 
+#include "core/glslang_client.h"
 #include "core/lexing.h"
-#include "core/sandbox.h"
 
 namespace rm {
 
 namespace {
-
-void ensure_glslang_initialized() {
-  static std::once_flag once;
-  std::call_once(once, [] { glslang::InitializeProcess(); });
-}
 
 // The spelling of the parser tokens glslang names in "unexpected X".
 const char* token_spelling(const std::string& name) {
@@ -143,176 +128,46 @@ Diagnostic locate(const Source& source, Severity severity, int final_line, int c
   return d;
 }
 
-// Runs `work` on a thread with a stack of `bytes`, and waits for it. Only the
-// pages the work touches are ever backed by memory.
-void run_with_stack(size_t bytes, const std::function<void()>& work) {
-  pthread_attr_t attr;
-  pthread_attr_init(&attr);
-  pthread_t thread;
-  auto call = [](void* w) -> void* {
-    (*static_cast<const std::function<void()>*>(w))();
-    return nullptr;
-  };
-  const bool started = pthread_attr_setstacksize(&attr, bytes) == 0 &&
-                       pthread_create(&thread, &attr, call, const_cast<std::function<void()>*>(&work)) == 0;
-  pthread_attr_destroy(&attr);
-  if (!started) {
-    work();  // no such stack to be had: run here, with the stack there is
-    return;
+// What went wrong when glslang gave no verdict, said at the scene's file.
+Diagnostic no_verdict(const Source& source, const GlslangReply& reply) {
+  Diagnostic d;
+  d.path = source.files.empty() ? std::string() : source.files.front().string();
+  switch (reply.status) {
+    case GlslangReply::Status::TimedOut:
+      d.message = "glslang took more than " + std::to_string(static_cast<int>(kValidationSeconds)) +
+                  " s on this shader (a macro that expands without end?)";
+      break;
+    case GlslangReply::Status::OutOfMemory:
+      d.message = "glslang needed more than " + std::to_string(kValidationBytes >> 20) +
+                  " MiB for this shader (a macro that expands without end?)";
+      break;
+    case GlslangReply::Status::NoWorker:
+      d.message = "cannot check this shader: " + reply.output;
+      break;
+    default:
+      d.message = std::string("glslang crashed on this shader (") +
+                  (reply.signal ? strsignal(reply.signal) : "it exited with an error") + ")";
   }
-  pthread_join(thread, nullptr);
-}
-
-// The deepest nesting of the program's tree (one level per operator in a
-// chain like x+x+x, per call, per parenthesis) and the final source line
-// where it is reached. (This file builds without RTTI, as Debian's glslang
-// does, so that it may derive from glslang's traverser.)
-class DeepestNode : public glslang::TIntermTraverser {
- public:
-  int line = 0;
-  bool visitBinary(glslang::TVisit, glslang::TIntermBinary* node) override { return note(node); }
-  bool visitUnary(glslang::TVisit, glslang::TIntermUnary* node) override { return note(node); }
-  bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override { return note(node); }
-  bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override { return note(node); }
-  bool visitLoop(glslang::TVisit, glslang::TIntermLoop* node) override { return note(node); }
-
- private:
-  bool note(TIntermNode* node) {
-    // Called before the node's own level is counted: depth + 1 is its level.
-    if (depth + 1 > maxDepth) line = node->getLoc().line;
-    return true;
-  }
-};
-
-// The calls to functions that no body defines, each with the final source
-// line of its first call. The driver's linker refuses any such call, reached
-// or not. glslang's own link finds them too, but its call-graph checks grow
-// with the square of the calls (a chain of 20,000 functions took 81 s); this
-// is one walk over the tree.
-class CallsWithoutBody : public glslang::TIntermTraverser {
- public:
-  bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
-    if (node->getOp() == glslang::EOpFunction) {
-      defined_.insert(node->getName().c_str());
-    } else if (node->getOp() == glslang::EOpFunctionCall && node->isUserDefined()) {
-      const int line = node->getLoc().line;
-      auto [at, added] = first_call_.emplace(node->getName().c_str(), line);
-      if (!added) at->second = std::min(at->second, line);
-    }
-    return true;
-  }
-  // glslang's log lines for them, in the order of their lines.
-  std::string log() const {
-    std::vector<std::pair<int, std::string>> missing;
-    for (const auto& [mangled, line] : first_call_)
-      if (!defined_.count(mangled)) missing.emplace_back(line, mangled.substr(0, mangled.find('(')));
-    std::sort(missing.begin(), missing.end());
-    std::string out;
-    for (const auto& [line, name] : missing)
-      out += "ERROR: 0:" + std::to_string(line) + ": '" + name + "' : function is called but no body defines it\n";
-    return out;
-  }
-
- private:
-  std::set<std::string> defined_;               // mangled names: "f(vf3;"
-  std::map<std::string, int> first_call_;
-};
-
-// glslang's verdict as the sandbox sends it: "DEPTH LINE\n" (the tree's
-// deepest level and its final source line, 0 0 when it did not parse), then
-// the info log.
-// glslang's preprocessor over `text`, or nullopt if it fails. Call on a big stack.
-std::optional<std::string> preprocessed(const std::string& text) {
-  glslang::TShader shader(EShLangFragment);
-  const char* chars = text.c_str();
-  const int length = static_cast<int>(text.size());
-  shader.setStringsWithLengths(&chars, &length, 1);
-  glslang::TShader::ForbidIncluder includer;
-  std::string expanded;
-  if (!shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, EShMsgDefault, &expanded, includer))
-    return std::nullopt;
-  return expanded;
-}
-
-// The verdict line ("DEPTH LINE"), then glslang's log; with `active_text`,
-// then a NUL and its preprocessed text (a NUL never comes out of the log).
-std::string parse_in_child(const Source& source, const std::string* active_text) {
-  std::string verdict;
-  // glslang's traversals recurse once per level of the tree, and a 30,000-term
-  // sum (60 KB of text) overflows an 8 MiB stack.
-  run_with_stack(kValidationStack, [&] {
-    glslang::TShader shader(EShLangFragment);
-    const char* text = source.text.c_str();
-    const int length = static_cast<int>(source.text.size());
-    shader.setStringsWithLengths(&text, &length, 1);
-    // No client API is set: plain GLSL semantics, as the GL driver applies them.
-    const bool parsed = shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
-    glslang::TIntermediate* tree = parsed ? shader.getIntermediate() : nullptr;
-    DeepestNode deepest;
-    CallsWithoutBody calls;
-    if (tree && tree->getTreeRoot()) {
-      tree->getTreeRoot()->traverse(&deepest);
-      tree->getTreeRoot()->traverse(&calls);
-    }
-    verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog() +
-              calls.log();
-    if (active_text) verdict += '\0' + preprocessed(*active_text).value_or("");
-  });
-  return verdict;
-}
-
-// glslang builds the built-in symbols of each #version once per process, in
-// about 80 ms, and keeps them. A sandboxed child would build them again every
-// time and throw them away, so the parent builds them first, from a shader
-// that holds nothing of the user's but the #version line preprocess() checked.
-void build_builtins_for(const std::string& version_line) {
-  static std::mutex mutex;
-  static std::set<std::string> built;
-  std::lock_guard<std::mutex> lock(mutex);
-  if (!built.insert(version_line).second) return;
-  glslang::TShader shader(EShLangFragment);
-  const std::string text = version_line + "\nvoid main() {}\n";
-  const char* chars = text.c_str();
-  shader.setStrings(&chars, 1);
-  shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+  return d;
 }
 
 }  // namespace
 
 Diagnostics validate(const Source& source, std::string* active, const std::string& appended) {
-  ensure_glslang_initialized();
-  build_builtins_for(source.version_line);
-  SandboxLimits limits;
-  limits.seconds = kValidationSeconds;
-  limits.bytes = kValidationBytes;
-  const std::string active_text = active ? source.text + "\n" + appended : std::string();
-  SandboxResult child = run_sandboxed([&] { return parse_in_child(source, active ? &active_text : nullptr); }, limits);
+  GlslangRequest request;
+  request.version_line = source.version_line;
+  request.text = source.text;
+  if (active) request.active_text = source.text + "\n" + appended;
+  GlslangReply child = ask_glslang(request);
   if (active) {
     active->clear();
     const size_t nul = child.output.find('\0');
-    if (child.status == SandboxResult::Status::Ok && nul != std::string::npos) {
+    if (child.status == GlslangReply::Status::Ok && nul != std::string::npos) {
       *active = child.output.substr(nul + 1);
       child.output.resize(nul);
     }
   }
-  if (child.status != SandboxResult::Status::Ok) {
-    Diagnostic d;
-    d.path = source.files.empty() ? std::string() : source.files.front().string();
-    switch (child.status) {
-      case SandboxResult::Status::TimedOut:
-        d.message = "glslang took more than " + std::to_string(static_cast<int>(kValidationSeconds)) +
-                    " s on this shader (a macro that expands without end?)";
-        break;
-      case SandboxResult::Status::OutOfMemory:
-        d.message = "glslang needed more than " + std::to_string(kValidationBytes >> 20) +
-                    " MiB for this shader (a macro that expands without end?)";
-        break;
-      default:
-        d.message = std::string("glslang crashed on this shader (") +
-                    (child.signal ? strsignal(child.signal) : "it exited with an error") + ")";
-    }
-    return {d};
-  }
+  if (child.status != GlslangReply::Status::Ok) return {no_verdict(source, child)};
   const size_t newline = child.output.find('\n');
   LogLine verdict(std::string_view(child.output).substr(0, newline));
   const int depth = verdict.number().value_or(0);
@@ -369,35 +224,27 @@ std::string with_line_markers(const std::string& expanded, const Source& source)
 }  // namespace
 
 std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags) {
-  ensure_glslang_initialized();
-  glslang::TShader shader(EShLangFragment);
-  const char* text = source.text.c_str();
-  const int length = static_cast<int>(source.text.size());
-  shader.setStringsWithLengths(&text, &length, 1);
-  glslang::TShader::ForbidIncluder includer;  // includes are already expanded
-  std::string out;
-  if (!shader.preprocess(GetDefaultResources(), 100, ENoProfile, false, false, EShMsgDefault, &out, includer)) {
-    *diags = map_log(shader.getInfoLog(), source, LogFormat::Glslang);
+  GlslangRequest request;
+  request.kind = GlslangRequest::Kind::Preprocess;
+  request.text = source.text;
+  const GlslangReply child = ask_glslang(request);
+  if (child.status != GlslangReply::Status::Ok) {
+    *diags = {no_verdict(source, child)};
     return std::nullopt;
   }
-  return with_line_markers(out, source);
+  if (child.output.empty() || child.output[0] != '+') {
+    *diags = map_log(child.output.substr(std::min<size_t>(1, child.output.size())), source, LogFormat::Glslang);
+    return std::nullopt;
+  }
+  return with_line_markers(child.output.substr(1), source);
 }
 
 std::optional<std::string> active_code(const std::string& text) {
-  ensure_glslang_initialized();
-  SandboxLimits limits;
-  limits.seconds = kValidationSeconds;
-  limits.bytes = kValidationBytes;
-  const SandboxResult child = run_sandboxed(
-      [&] {
-        std::string out;
-        run_with_stack(kValidationStack, [&] {
-          if (auto expanded = preprocessed(text)) out = "+" + *expanded;
-        });
-        return out;
-      },
-      limits);
-  if (child.status != SandboxResult::Status::Ok || child.output.empty()) return std::nullopt;
+  GlslangRequest request;
+  request.kind = GlslangRequest::Kind::Preprocess;
+  request.text = text;
+  const GlslangReply child = ask_glslang(request);
+  if (child.status != GlslangReply::Status::Ok || child.output.empty() || child.output[0] != '+') return std::nullopt;
   return child.output.substr(1);
 }
 

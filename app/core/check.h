@@ -1,31 +1,28 @@
-// Check: validates the final source with glslang, in-process, before any GL
-// call, and maps compiler logs (glslang's and the driver's) back to the
-// user's files and lines.
+// Check: validates the final source with glslang before any GL call, and
+// maps compiler logs (glslang's and the driver's) back to the user's files
+// and lines. glslang runs in the host's worker process (core/glslang_client),
+// within the limits in glslang_worker/protocol.h.
 #pragma once
-#include <cstdint>
 #include <optional>
 #include <string>
 
 #include "core/diagnostics.h"
 #include "core/source.h"
+#include "glslang_worker/protocol.h"
 
 namespace rm {
 
 // How deep the program's tree may nest (operator chains, calls, parentheses)
 // before validate() refuses it. Real shaders stay far below it.
 constexpr int kMaxTreeDepth = 2000;
-// What glslang may spend on one shader: validation runs in a child process
-// (core/sandbox), on a stack of its own, and past these it is an error.
-constexpr double kValidationSeconds = 5.0;
-constexpr std::uintmax_t kValidationBytes = std::uintmax_t{512} << 20;
-constexpr size_t kValidationStack = size_t{256} << 20;
 
 // Runs glslang's parser and semantic checks on source.text (fragment stage)
-// within the limits above, and refuses a tree deeper than kMaxTreeDepth.
-// With `active`, the same child also runs glslang's preprocessor over
+// within the validation limits, and refuses a tree deeper than kMaxTreeDepth.
+// With `active`, the same request also runs glslang's preprocessor over
 // source.text followed by `appended`, and leaves the result there, line for
 // line (what active_code() gives; empty if the preprocessor fails): the
-// uniforms and the knobs read it, and a reload forks once, not three times.
+// uniforms and the knobs read it, and a reload asks glslang once, not three
+// times.
 Diagnostics validate(const Source& source, std::string* active = nullptr, const std::string& appended = {});
 
 // What the compiler sees: source.text after glslang's own preprocessor, with

@@ -5,13 +5,17 @@
 # Program; the fuzz targets never call it, but it links against libepoxy.
 # supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's
 # offset; and inputs.cpp: the table records iDate as `render --date` reads it.
+# glslang itself runs in the worker, a program of its own
+# (RM_GLSLANG_WORKER_SOURCES): both lists build with the glslang_worker/
+# protocol.
 set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/source.cpp
   ${CMAKE_CURRENT_LIST_DIR}/files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lexing.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/sandbox.cpp
   ${CMAKE_CURRENT_LIST_DIR}/diagnostics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/check.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/glslang_client.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
   ${CMAKE_CURRENT_LIST_DIR}/channel_spec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/host_inputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/supersampling.cpp
@@ -19,3 +23,12 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/program.cpp
   ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
 )
+set(RM_GLSLANG_WORKER_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/main.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/glslang_work.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/sandbox.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
+)
+# Where the host finds the worker: <prefix>/libexec/raymarching installed,
+# else where this build put it.
+set(RM_GLSLANG_WORKER_INSTALL_DIR "libexec/raymarching")

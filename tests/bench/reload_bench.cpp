@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
     cold_ms.push_back((presented_at(*line) - start) / 1e6);
   }
 
-  // glslang validation of the largest shader, in-process.
+  // glslang validation of the largest shader, through the glslang worker.
   rm::SourceOptions options;
   options.shaderlib_dir = rm::shaderlib_dir();
   std::vector<double> validate_ms;
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
     lines = source.line_map.size();
     if (rm::count_errors(diags)) return std::fprintf(stderr, "%s", rm::join(diags).c_str()), 1;
   }
-  validate_ms.erase(validate_ms.begin());  // the first run initialises glslang
+  validate_ms.erase(validate_ms.begin());  // the first run starts the worker
 
   fs::remove_all(dir);
   std::printf("| measure | median | p95 | runs |\n|---|---:|---:|---:|\n");

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # An installed raymarching finds its bundled shaderlib (<rm/...>) and default
-# scene under <prefix>/share/raymarching, not in the source tree.
+# scene under <prefix>/share/raymarching, not in the source tree, and its
+# glslang worker under <prefix>/libexec/raymarching.
 set -euo pipefail
 build_dir=$1
 prefix=$(mktemp -d)
@@ -9,6 +10,7 @@ cmake --install "$build_dir" --prefix "$prefix" >/dev/null
 printf '#include <rm/sdf.glsl>\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(sdSphere(vec3(f, 0.0), 1.0)); }\n' > "$prefix/scene.frag"
 "$prefix/bin/raymarching" check "$prefix/scene.frag"
 test -f "$prefix/share/raymarching/examples/default.frag"
+test -x "$prefix/libexec/raymarching/raymarching-glslang"
 # The installed copy must be the one found: hide the source tree's by renaming the lib in the prefix.
 mv "$prefix/share/raymarching/shaderlib/rm/sdf.glsl" "$prefix/sdf.glsl.away"
 if "$prefix/bin/raymarching" check "$prefix/scene.frag" 2>"$prefix/err.txt"; then

@@ -1,7 +1,7 @@
 // The sandbox that glslang runs in: what the work returns comes back whole,
 // and work that runs too long, allocates too much or crashes is reported as
 // such while the caller lives on.
-#include "core/sandbox.h"
+#include "glslang_worker/sandbox.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>

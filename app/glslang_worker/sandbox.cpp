@@ -1,4 +1,4 @@
-#include "core/sandbox.h"
+#include "glslang_worker/sandbox.h"
 
 #include <fcntl.h>
 #include <poll.h>
