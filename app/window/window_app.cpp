@@ -75,7 +75,8 @@ bool mesa_cache_disabled() {
 class WindowApp {
  public:
   WindowApp(const WindowOptions& options, GLFWwindow* window)
-      : options_(options), window_(window), source_(options.source),
+      : options_(options), window_(window), source_(options.source), building_source_(options.source),
+        shown_source_(options.source),
         project_(project_files(options.scene, options.media), options.source, options.channels),
         watcher_(make_watcher(options.watch)), graph_(renderer_), builder_(window), ui_(window),
         budget_(options.target_fps > 0 ? 1000.0 / options.target_fps : 0.0) {
@@ -197,6 +198,7 @@ class WindowApp {
       return;
     }
     project_.set_options(source_, with_view(source_, view_));
+    building_source_ = source_;
     if (!builder_.available()) {
       loaded(project_.reload());
       return;
@@ -231,7 +233,8 @@ class WindowApp {
     if (project_.ready()) use_ = project_.inputs_read();
     model_.has_picture = project_.ready();
     if (status == ReloadStatus::Swapped) {
-      take_.reloaded(source_, project_);
+      shown_source_ = building_source_;
+      take_.reloaded(shown_source_, project_);
       take_user_uniforms();
       take_knobs();
       // A new program: the picture in progress is the old one's, and what
@@ -763,7 +766,7 @@ class WindowApp {
     // --samples` with the samples it has gathered draws.
     const bool refined = samples_ > 1 && !drawing_ && picture_.size() == size;
     const std::string name = options_.scene.stem().string() + "-" + file_timestamp() + "." + options_.shot_format;
-    Metadata metadata = frame_metadata(options_.scene, source_, in, refined ? samples_ : 1);
+    Metadata metadata = frame_metadata(options_.scene, shown_source_, in, refined ? samples_ : 1);
     // Which frame of the take being recorded this is: `render --take` draws it again.
     if (take_.recording()) metadata.emplace_back("raymarching:take_frame", std::to_string(take_.current_frame()));
     if (refined) {
@@ -811,7 +814,7 @@ class WindowApp {
       return;
     }
     if (project_.has_feedback()) restart();
-    take_.start(options_.scene, options_.media, options_.channels, source_, project_);
+    take_.start(options_.scene, options_.media, options_.channels, shown_source_, project_);
     dirty_ = true;  // the next frame is the take's first, even in a static scene
     std::cout << "take: recording" << std::endl;
     update_title(true);
@@ -868,6 +871,10 @@ class WindowApp {
   const WindowOptions& options_;
   GLFWwindow* window_;
   SourceOptions source_;  // the command line's, with the knobs and preset set in the panel
+  // source_ as the latest build began with it, and as the running program
+  // was built with it: a screenshot or a take records the program it shows,
+  // not a knob whose build failed or has not finished.
+  SourceOptions building_source_, shown_source_;
   Project project_;
   std::unique_ptr<Watcher> watcher_;
   Renderer renderer_;
