@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
 #include <vector>
 
 namespace rm {
@@ -32,7 +31,7 @@ bool read_all(int fd, char* bytes, size_t size, ReplyDeadline deadline) {
       const auto left = std::chrono::ceil<std::chrono::milliseconds>(*deadline - Clock::now()).count();
       if (left <= 0) return false;
       pollfd ready{fd, POLLIN, 0};
-      const int polled = poll(&ready, 1, static_cast<int>(std::min<long long>(left, 1000)));
+      const int polled = poll(&ready, 1, static_cast<int>(left));
       if (polled == 0 || (polled < 0 && errno == EINTR)) continue;
       if (polled < 0) return false;
     }
