@@ -10,6 +10,7 @@ namespace rm {
 
 void Debouncer::note(WatchClock::time_point now, const fs::path& file, Event event) {
   pending_ = true;
+  renamed_last_ = event == Event::RenamedOnto;
   last_ = now;
   touched_.insert(file);
   if (event == Event::Writing) writing_.insert(file);
@@ -19,7 +20,7 @@ void Debouncer::note(WatchClock::time_point now, const fs::path& file, Event eve
 bool Debouncer::settled(WatchClock::time_point now) {
   if (!pending_) return false;
   const auto since = now - last_;
-  if (since < timing_.quiet) return false;
+  if (since < timing_.quiet && !(renamed_last_ && writing_.empty())) return false;
   if (!writing_.empty() && since < timing_.open_write_limit) return false;
   if (since < timing_.missing_grace) {
     for (const auto& file : touched_) {
@@ -74,6 +75,7 @@ class InotifyWatcher final : public Watcher {
         using E = Debouncer::Event;
         const E kind = (event->mask & (IN_MODIFY | IN_CREATE)) ? E::Writing
                        : (event->mask & (IN_DELETE | IN_MOVED_FROM)) ? E::Gone
+                       : (event->mask & IN_MOVED_TO)                  ? E::RenamedOnto
                                                                     : E::Closed;
         debounce_.note(now, file, kind);
       }

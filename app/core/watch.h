@@ -5,6 +5,8 @@
 // VS Code, JetBrains and `sed -i` do), delete-then-recreate and `git
 // checkout` are all seen. Bursts are debounced into one change, and a file
 // still open for writing is waited for, so a half-written file is not read.
+// A rename onto a watched file needs no quiet period: it puts the whole new
+// text in place at once, the last step of an editor's save.
 // inotify on Linux; polling of mtime (ns) and size behind the same interface.
 #pragma once
 #include <chrono>
@@ -28,7 +30,7 @@ struct WatchTiming {
 // The debounce rules both backends share.
 class Debouncer {
  public:
-  enum class Event { Writing, Closed, Gone };
+  enum class Event { Writing, Closed, Gone, RenamedOnto };
   explicit Debouncer(WatchTiming timing) : timing_(timing) {}
   void note(WatchClock::time_point now, const fs::path& file, Event event);
   bool settled(WatchClock::time_point now);
@@ -36,6 +38,7 @@ class Debouncer {
  private:
   WatchTiming timing_;
   bool pending_ = false;
+  bool renamed_last_ = false;  // the burst's last event put a whole file in place
   WatchClock::time_point last_{};
   std::set<fs::path> touched_;
   std::set<fs::path> writing_;

@@ -136,5 +136,24 @@ TEST(InotifyWatch, HalfWrittenFileIsNotReportedUntilClosed) {
   EXPECT_EQ(changes_during(*w, kSettle), 1);
 }
 
+// A rename puts a whole file in place: it is a change at once, where a write
+// waits for the quiet period (long here, so that the difference shows).
+TEST(InotifyWatch, ARenameIsReportedWithoutTheQuietPeriod) {
+  TempDir dir;
+  const auto scene = dir / "scene.frag";
+  write_file(scene, "v1\n");
+  WatchTiming timing;
+  timing.quiet = 400ms;
+  auto w = make_watcher(WatchBackend::Inotify, timing);
+  w->watch({scene});
+  write_file(dir / ".scene.frag.tmp", "v2\n");
+  std::filesystem::rename(dir / ".scene.frag.tmp", scene);
+  EXPECT_TRUE(w->changed());
+  EXPECT_EQ(changes_during(*w, 600ms), 0);  // and once
+  write_file(scene, "v3 in place\n");
+  EXPECT_EQ(changes_during(*w, 200ms), 0);  // within the quiet period
+  EXPECT_EQ(changes_during(*w, 600ms), 1);
+}
+
 }  // namespace
 }  // namespace rm
