@@ -141,4 +141,14 @@ GlslangReply ask_glslang(const GlslangRequest& request) {
   return worker.ask(request);
 }
 
+GlslangWarmUp::GlslangWarmUp(std::string version_line)
+    : thread_([line = std::move(version_line)] {
+        GlslangRequest request;
+        request.version_line = line;
+        request.text = line + "\nvoid main() {}\n";
+        ask_glslang(request);
+      }) {}
+
+GlslangWarmUp::~GlslangWarmUp() { thread_.join(); }
+
 }  // namespace rm

@@ -75,7 +75,7 @@ Renderer::Renderer() : vao_(gl::make_vertex_array()) {
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
   max_tile_ = std::max(1, std::min({max_size, viewport[0], viewport[1], 8192}));
   Source mean;
-  mean.version_line = "#version 450 core";
+  mean.version_line = kHostVersionLine;
   mean.text = mean.version_line +
               "\nuniform sampler2D sample_;\nout vec4 color;\n"
               "void main() { color = texelFetch(sample_, ivec2(gl_FragCoord.xy), 0); }\n";

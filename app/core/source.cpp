@@ -415,7 +415,7 @@ class Preprocessor {
     // Real Shadertoy shaders carry a main() for other hosts in an inactive
     // #ifdef: with both, the kind is decided on what the compiler would see.
     if (has_main && has_main_image) {
-      std::string defined = "#version 450 core\n" + hw_performance_define();
+      std::string defined = std::string(kHostVersionLine) + "\n" + hw_performance_define();
       for (const auto& d : options_.defines) defined += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
       if (auto active = active_code(defined + body_)) {
         code = std::move(*active);
@@ -446,7 +446,7 @@ class Preprocessor {
     const bool keep_version = modern;
     out_.version_line = keep_version
         ? "#version " + std::to_string(version_->number) + (version_->profile.empty() ? "" : " " + version_->profile)
-        : "#version 450 core";
+        : kHostVersionLine;
     emit(out_.version_line, keep_version ? version_origin_ : Origin{kHostFile, ++host_lines_});
     if (const std::string line = hw_performance_define(); !line.empty()) emit_host(line);
     int define_index = 0;

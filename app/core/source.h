@@ -64,6 +64,9 @@ struct FileSystem {
 };
 FileSystem disk_file_system();
 
+// The #version line the host gives a shader that names none, or an old one.
+inline constexpr char kHostVersionLine[] = "#version 450 core";
+
 struct Source {
   std::string text;                // the final GLSL handed to glslang and the driver
   std::vector<fs::path> files;     // every file read (index = Origin::file); [0] is the scene

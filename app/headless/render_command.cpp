@@ -10,6 +10,7 @@
 #include "core/check.h"
 #include "core/lexing.h"
 #include "core/frame_graph.h"
+#include "core/glslang_client.h"
 #include "core/project.h"
 #include "core/renderer.h"
 #include "core/user_uniforms.h"
@@ -117,6 +118,8 @@ int render_command(const RenderRequest& req) {
   // Declared before the deadline, whose watch may abandon it until the deadline is gone.
   std::unique_ptr<VideoEncoder> encoder;
   Deadline deadline(req.timeout, limit);
+  // The glslang worker starts while EGL opens the display.
+  GlslangWarmUp glslang(kHostVersionLine);
   std::string error;
   auto context = EglContext::create(&error);
   if (!context) return fail(error, kExitUsage);

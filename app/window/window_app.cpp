@@ -24,6 +24,7 @@
 #include "core/project.h"
 #include "core/gl_census.h"
 #include "core/gl_debug.h"
+#include "core/glslang_client.h"
 #include "core/views.h"
 #include "core/renderer.h"
 #include "core/knobs.h"
@@ -998,6 +999,8 @@ WindowApp* app_of(GLFWwindow* window) { return static_cast<WindowApp*>(glfwGetWi
 }  // namespace
 
 int run_window(const WindowOptions& options) {
+  // The worker starts while GLFW opens the window and the driver its context.
+  GlslangWarmUp glslang(kHostVersionLine);
   glfwSetErrorCallback([](int, const char* message) { std::cerr << "raymarching: glfw: " << message << '\n'; });
   if (!glfwInit()) {
     std::cerr << "raymarching: error: cannot open a window (no display?); `raymarching render` needs none\n";

@@ -62,6 +62,17 @@ TEST(GlslangWorker, OneWorkerAnswersRequestAfterRequest) {
   EXPECT_EQ(worker_pids(), first);
 }
 
+// The window and `render` start the worker while they open their display:
+// the first shader is then answered by that worker, not by one it starts.
+TEST(GlslangWorker, AWarmUpStartsTheWorkerThatAnswersTheFirstShader) {
+  ASSERT_TRUE(worker_pids().empty());
+  { GlslangWarmUp warm_up("#version 450 core"); }
+  const std::vector<pid_t> warmed = worker_pids();
+  ASSERT_EQ(warmed.size(), 1u);
+  EXPECT_TRUE(names_the_undeclared_name(ask_glslang(undeclared_name())));
+  EXPECT_EQ(worker_pids(), warmed);
+}
+
 TEST(GlslangWorker, AWorkerThatWasKilledIsStartedAgain) {
   ASSERT_TRUE(names_the_undeclared_name(ask_glslang(undeclared_name())));
   const std::vector<pid_t> killed = worker_pids();
