@@ -15,7 +15,7 @@ GlslangReply ask_glslang(const GlslangRequest& request);
 
 // Starts the worker and has it build glslang's built-in symbols for
 // `version_line`, on a thread of its own, while the caller opens its window
-// or display: the first shader then waits for neither (about 80 ms). A
+// or display: the first shader then waits for neither (about 50 ms). A
 // request made meanwhile takes its turn after it. Joined when destroyed; a
 // worker that cannot start says so at the first real request.
 class GlslangWarmUp {

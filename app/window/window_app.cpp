@@ -864,7 +864,7 @@ class WindowApp {
   // While a reload builds, the running clock draws a picture every
   // kBuildFrameInterval, not as fast as the budget allows: on a CPU renderer
   // the compiler then has most of the cores, and the new program shows
-  // sooner (gallery's fresh edit about 40 ms). The picture keeps moving, and
+  // sooner (a fresh edit of room about 40 ms). The picture keeps moving, and
   // input still draws at once.
   static constexpr long long kBuildFrameIntervalNs = 100'000'000;
   bool animation_due() const {
