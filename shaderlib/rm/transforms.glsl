@@ -1,8 +1,8 @@
 // rm/transforms.glsl: domain operations. They map the query point p (op*
 // returning a point) or a distance (op* returning a float) so that a primitive
 // can be moved, turned, scaled, mirrored, repeated and deformed.
-// Provides: opTranslate, rmRotation2, rmRotationX, rmRotationY, rmRotationZ,
-//   rmRotationAxis, opRotate, opRotateAxis, opScale, opScaleDistance, opMirror, opSymmetryX,
+// Provides: opTranslate, rmRotation2SinCos, rmRotation2, rmRotationX, rmRotationY,
+//   rmRotationZ, rmRotationAxis, opRotate, opRotateAxis, opScale, opScaleDistance, opMirror, opSymmetryX,
 //   opSymmetryXZ, opRepeat, opRepeatBorder, opRepeatLimited, opRepeatPolar, opRepeatPolarMirror,
 //   opTwist, opTwistQuarter, opTwistLipschitz, opBend, opBendLipschitz, opElongate, opRound, opOnion,
 //   opExtrude, opRevolve.
@@ -18,11 +18,12 @@
 // Point for a shape moved by offset: sd(opTranslate(p, offset)). keeps the class
 vec3 opTranslate(vec3 p, vec3 offset) { return p - offset; }
 
+// 2D rotation by the angle whose sine and cosine are sinCos.x and sinCos.y
+// (counter-clockwise), for callers that have them without sin() and cos().
+mat2 rmRotation2SinCos(vec2 sinCos) { return mat2(sinCos.y, sinCos.x, -sinCos.x, sinCos.y); }
+
 // 2D rotation by angle a (radians, counter-clockwise): p.xz = rmRotation2(a) * p.xz.
-mat2 rmRotation2(float a) {
-  float c = cos(a), s = sin(a);
-  return mat2(c, s, -s, c);
-}
+mat2 rmRotation2(float a) { return rmRotation2SinCos(vec2(sin(a), cos(a))); }
 
 // Rotation by a radians about +x (right-handed: y turns toward z).
 mat3 rmRotationX(float a) {
@@ -141,8 +142,7 @@ vec3 opTwist(vec3 p, float k) { return vec3(rmRotation2(k * p.y) * p.xz, p.y).xz
 // gallery's twist took 1.1 ms less of a 32.5 ms frame.
 // approximate, Lipschitz opTwistLipschitz(k, r)
 vec3 opTwistQuarter(vec3 p, float k) {
-  vec2 sc = rmSinCosQuarter(k * p.y);
-  return vec3(mat2(sc.y, sc.x, -sc.x, sc.y) * p.xz, p.y).xzy;
+  return vec3(rmRotation2SinCos(rmSinCosQuarter(k * p.y)) * p.xz, p.y).xzy;
 }
 
 // Lipschitz constant of opTwist(p, k) where the field is evaluated within distance
