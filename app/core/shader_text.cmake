@@ -30,5 +30,9 @@ set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
 )
 # Where the host finds the worker: <prefix>/libexec/raymarching installed,
-# else where this build put it.
+# else where this build put it. Whatever builds glslang_client.cpp takes
+# RM_GLSLANG_WORKER_PATHS as its compile definitions.
 set(RM_GLSLANG_WORKER_INSTALL_DIR "libexec/raymarching")
+set(RM_GLSLANG_WORKER_PATHS
+  RM_GLSLANG_WORKER_INSTALLED="${RM_GLSLANG_WORKER_INSTALL_DIR}/raymarching-glslang"
+  RM_GLSLANG_WORKER_BUILT="$<TARGET_FILE:raymarching-glslang>")
