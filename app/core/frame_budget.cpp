@@ -76,7 +76,12 @@ glm::ivec4 TilePlan::next() const {
   }
   // A band of rows, drawn in parts from the left.
   const int band = x_ > 0 ? band_ : std::min(kProbe, y_top_);
-  const int width = std::clamp(static_cast<int>(pixels / band), std::min(kProbe, size_.x - x_), size_.x - x_);
+  int width = std::clamp(static_cast<int>(pixels / band), std::min(kProbe, size_.x - x_), size_.x - x_);
+  // A rest of the band narrower than a probe goes with this tile: a sliver
+  // costs a draw of its own, and its cost per pixel, mostly the draw's, would
+  // send the next tile back to a probe (a reload's first picture of cubes
+  // took 61 tiles, not 10).
+  if (size_.x - x_ - width < kProbe) width = size_.x - x_;
   return {x_, y_top_ - band, width, band};
 }
 

@@ -56,7 +56,8 @@ class ScaleController {
 // The next tile of a picture drawn in parts, rows from the top, sized so that
 // it takes about `tile_ms` at the cost per pixel measured on the last tile
 // (or the picture's average, if higher), and at most twice the last tile's
-// pixels. A picture of unknown cost starts with a probe kProbe pixels square.
+// pixels (and a sliver: no band's rest narrower than a probe is left over).
+// A picture of unknown cost starts with a probe kProbe pixels square.
 class TilePlan {
  public:
   static constexpr int kProbe = 16;  // the smallest tile's side, in pixels
