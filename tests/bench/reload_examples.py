@@ -51,10 +51,18 @@ def reload_of(err, generation, saved):
     present = next((m for m in PRESENTED.finditer(text) if int(m.group(1)) == generation), None)
     if not reload or not present:
         return None
-    whole = next((int(m.group(1)) / 1e9 for m in PICTURE.finditer(text, present.start())), None)
-    if whole is None:
+    # The new program's first picture: the first one done after its first
+    # draw (one of the old program's may finish after the build). It is on
+    # screen at the present that follows it, which -v logs only for a
+    # generation's first: so the later of the two. (This searched from the
+    # first present on, and took the picture after a first picture drawn in
+    # one turn: a frame too late, 15-20 ms.)
+    first = next((m for m in FIRST_DRAW.finditer(text) if int(m.group(1)) == generation), None) or reload
+    done = next((int(m.group(1)) / 1e9 for m in PICTURE.finditer(text, first.end())), None)
+    if done is None:
         return None
-    draw = next((float(m.group(2)) for m in FIRST_DRAW.finditer(text) if int(m.group(1)) == generation), 0.0)
+    whole = max(done, int(present.group(2)) / 1e9)
+    draw = float(first.group(2)) if first is not reload else 0.0
     return {"present": int(present.group(2)) / 1e9 - saved, "whole": whole - saved,
             "preprocess": float(reload.group(2)), "glslang": float(reload.group(3)),
             "driver": float(reload.group(4)), "warm": float(reload.group(5)), "draw": draw}
