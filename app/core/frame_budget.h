@@ -56,8 +56,9 @@ class ScaleController {
 // The next tile of a picture drawn in parts, rows from the top, sized so that
 // it takes about `tile_ms` at the cost per pixel measured on the last tile
 // (or the picture's average, if higher), and at most twice the last tile's
-// pixels (and a sliver: no band's rest narrower than a probe is left over).
-// A picture of unknown cost starts with a probe kProbe pixels square.
+// pixels, plus the rest of its band when that is narrower than a probe: no
+// such sliver is drawn alone. A picture of unknown cost starts with a probe
+// kProbe pixels square.
 class TilePlan {
  public:
   static constexpr int kProbe = 16;  // the smallest tile's side, in pixels
