@@ -12,6 +12,8 @@
 #include <mutex>
 #include <system_error>
 
+#include "core/data_paths.h"
+
 extern char** environ;
 
 namespace rm {
@@ -28,9 +30,8 @@ constexpr std::chrono::seconds kReplyTime{static_cast<int>(kValidationSeconds) *
 // one built beside this program.
 fs::path worker_path() {
   std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path installed = exe.parent_path().parent_path() / RM_GLSLANG_WORKER_INSTALLED;
+  if (const fs::path prefix = install_prefix(); !prefix.empty()) {
+    const fs::path installed = prefix / RM_GLSLANG_WORKER_INSTALLED;
     if (fs::exists(installed, ec)) return installed;
   }
   return RM_GLSLANG_WORKER_BUILT;
