@@ -142,6 +142,13 @@ void Program::set_element(const std::string& name, int index, const float* value
   if (location >= 0) upload(id(), location, it->second.type, values, components);
 }
 
+void Program::set_floats(const std::string& name, const std::vector<float>& values) const {
+  auto it = uniforms_.find(name);
+  if (it == uniforms_.end() || it->second.type != GL_FLOAT) return;
+  const GLsizei count = std::min(static_cast<GLsizei>(values.size()), static_cast<GLsizei>(it->second.size));
+  if (count > 0) glProgramUniform1fv(id(), it->second.location, count, values.data());
+}
+
 void Program::set_sampler(const std::string& name, int unit) const {
   auto it = uniforms_.find(name);
   if (it != uniforms_.end()) glProgramUniform1i(id(), it->second.location, unit);

@@ -37,6 +37,8 @@ class Program {
   // Sets element [index] of an array uniform.
   void set_element(const std::string& name, int index, const float* values, int components) const;
   void set_sampler(const std::string& name, int unit) const;
+  // Sets a float array uniform from its first element on (as many as it has).
+  void set_floats(const std::string& name, const std::vector<float>& values) const;
 
  private:
   gl::Program program_;

@@ -175,6 +175,24 @@ ReloadStatus Project::prepare(const OnBuilt& on_built) {
   return ReloadStatus::Swapped;
 }
 
+bool Project::tweaked() const {
+  return std::any_of(passes_.begin(), passes_.end(), [](const Pass& p) { return p.scene->tweaked(); });
+}
+
+bool Project::wants_twins() const {
+  return std::any_of(passes_.begin(), passes_.end(), [](const Pass& p) { return p.scene->wants_twin(); });
+}
+
+bool Project::prepare_twins(const OnBuilt& on_built) {
+  bool any = false;
+  for (const Pass& pass : passes_) any = pass.scene->prepare_twin(on_built) || any;
+  return any;
+}
+
+void Project::commit_twins() {
+  for (const Pass& pass : passes_) pass.scene->commit_twin();
+}
+
 void Project::commit() {
   if (!pending_) return;
   const PendingSwap swap = std::move(*pending_);

@@ -82,6 +82,14 @@ class Project {
   // the drawing's reads: passes(), image(), the programs and their sources.
   ReloadStatus prepare(const OnBuilt& on_built = {});
   void commit();
+  // Number tweaks (core/tweak.h), over every pass. tweaked(): a pass shows a
+  // tweak with its twin, and the next prepare() builds the exact program.
+  bool tweaked() const;
+  bool wants_twins() const;  // a running pass may have a twin not built yet
+  // Builds the running passes' twins, under prepare()'s terms (true: some
+  // are ready to commit_twins()).
+  bool prepare_twins(const OnBuilt& on_built = {});
+  void commit_twins();
   // -I/-D for every pass, and for the image pass alone (a debug view); they
   // apply at the next reload().
   void set_options(SourceOptions all, SourceOptions image_only);

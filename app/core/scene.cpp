@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/knobs.h"
+#include "core/tweak.h"
 
 namespace rm {
 
@@ -46,7 +47,8 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built) {
   Source source = preprocess(path_, options_, files_);
   times_.preprocess = ms_since(start);
   watch_ = source.watch;
-  if (source.ok() && attempted_ && source.text == attempted_text_) return ReloadStatus::Unchanged;
+  // The same text as the tweak on screen: now its exact program is built.
+  if (source.ok() && attempted_ && source.text == attempted_text_ && !showing_twin_) return ReloadStatus::Unchanged;
   attempted_ = source.ok();
   attempted_text_ = source.ok() ? source.text : std::string();
   if (!source.ok()) {
@@ -59,6 +61,14 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built) {
     cache_.erase(it);
     pending_diagnostics_.clear();
     return ReloadStatus::Swapped;
+  }
+  if (twin_ && source.text != good_source_.text) {
+    LiftedLiterals lifted = lift_literals(source, options_.shaderlib_dir);
+    if (lifted.ok && lifted.skeleton == twin_->skeleton) {
+      pending_tweak_ = Tweak{std::move(source), std::move(lifted.values)};
+      pending_diagnostics_.clear();  // not the last attempt's errors
+      return ReloadStatus::Swapped;
+    }
   }
   std::string active;
   start = std::chrono::steady_clock::now();
@@ -88,8 +98,23 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built) {
 }
 
 void Scene::commit() {
+  if (pending_tweak_) {
+    twin_->program.set_floats(kTweakUniform, pending_tweak_->values);
+    std::string active = good_active_;  // a number's change leaves the knobs as they are
+    if (program_) cache({good_source_.text, std::move(*program_), std::move(good_source_), std::move(good_active_)});
+    program_.reset();
+    good_source_ = std::move(pending_tweak_->source);
+    good_active_ = std::move(active);
+    pending_tweak_.reset();
+    diagnostics_ = std::move(pending_diagnostics_);
+    pending_diagnostics_.clear();
+    showing_twin_ = true;
+    ++generation_;
+    return;
+  }
   if (!pending_) return;
   if (program_) cache({good_source_.text, std::move(*program_), std::move(good_source_), std::move(good_active_)});
+  showing_twin_ = false;
   program_ = std::move(pending_->program);
   good_source_ = std::move(pending_->source);
   good_active_ = std::move(pending_->active);
@@ -100,10 +125,36 @@ void Scene::commit() {
 }
 
 void Scene::discard() {
+  if (pending_tweak_) {
+    pending_tweak_.reset();
+    attempted_ = false;
+  }
   if (!pending_) return;
   cache(std::move(*pending_));
   pending_.reset();
   attempted_ = false;  // the next prepare() builds it again (from the cache)
+}
+
+bool Scene::prepare_twin(const OnBuilt& on_built) {
+  twin_checked_ = generation_;
+  if (!program_ || showing_twin_) return false;
+  LiftedLiterals lifted = lift_literals(good_source_, options_.shaderlib_dir);
+  if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed_twin_) return false;
+  if (twin_ && twin_->skeleton == lifted.skeleton) return false;
+  Diagnostics ignored;  // the exact program built: a twin the driver rejects is only not there
+  std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &ignored);
+  if (!built) {
+    failed_twin_ = std::move(lifted.skeleton);
+    return false;
+  }
+  if (on_built) on_built(path_, *built);
+  pending_twin_ = Twin{std::move(lifted.skeleton), std::move(*built)};
+  return true;
+}
+
+void Scene::commit_twin() {
+  if (pending_twin_) twin_ = std::move(pending_twin_);
+  pending_twin_.reset();
 }
 
 }  // namespace rm

@@ -55,12 +55,29 @@ class Scene {
   void commit();
   void discard();
   // The source of the prepared program if there is one, else the running one's.
-  const Source& latest_source() const { return pending_ ? pending_->source : good_source_; }
-  const Diagnostics& latest_diagnostics() const { return pending_ ? pending_diagnostics_ : diagnostics_; }
+  const Source& latest_source() const {
+    return pending_tweak_ ? pending_tweak_->source : pending_ ? pending_->source : good_source_;
+  }
+  const Diagnostics& latest_diagnostics() const {
+    return pending_ || pending_tweak_ ? pending_diagnostics_ : diagnostics_;
+  }
   // New -I/-D options (a view, a preset); they apply at the next reload().
   void set_options(SourceOptions options) { options_ = std::move(options); }
 
-  const Program* program() const { return program_ ? &*program_ : nullptr; }
+  // The running program: the twin while it shows a tweak.
+  const Program* program() const { return showing_twin_ ? &twin_->program : program_ ? &*program_ : nullptr; }
+
+  // Number tweaks (core/tweak.h). A save that changes only literals the
+  // twin reads is prepared and committed like a build, with no compile: the
+  // twin then runs with the new values. While it does, tweaked() is true,
+  // and the next prepare() builds the exact program for the same text.
+  bool tweaked() const { return showing_twin_; }
+  // Whether the running program may have a twin not built yet.
+  bool wants_twin() const { return program_ && !showing_twin_ && twin_checked_ != generation_; }
+  // Builds the running program's twin (true: one is ready to commit_twin()),
+  // under the same terms as prepare(): it may run on the builder's thread.
+  bool prepare_twin(const OnBuilt& on_built = {});
+  void commit_twin();
   const Source& source() const { return good_source_; }  // of the running program
   // glslang's preprocessor output for the running program's text followed by
   // knob_probes(), line for line (from the same child as its validation).
@@ -96,6 +113,19 @@ class Scene {
   static constexpr size_t kCacheSize = 8;
   std::vector<Built> cache_;
   std::optional<Built> pending_;  // prepared, not yet committed
+  struct Twin {
+    std::string skeleton;  // of the texts it can show (LiftedLiterals)
+    Program program;
+  };
+  std::optional<Twin> twin_, pending_twin_;
+  struct Tweak {
+    Source source;
+    std::vector<float> values;
+  };
+  std::optional<Tweak> pending_tweak_;
+  bool showing_twin_ = false;
+  int twin_checked_ = -1;      // the generation prepare_twin() last looked at
+  std::string failed_twin_;    // the skeleton whose twin the driver rejected
   Diagnostics pending_diagnostics_;
   void cache(Built built);
 };

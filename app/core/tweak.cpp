@@ -1,0 +1,169 @@
+#include "core/tweak.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "core/lexing.h"
+
+namespace rm {
+
+namespace {
+
+constexpr char kMark = '\x01';
+
+bool under(const fs::path& file, const fs::path& dir) {
+  if (dir.empty()) return false;
+  const fs::path rel = file.lexically_normal().lexically_relative(dir.lexically_normal());
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+// A float literal by its spelling: a '.' or an exponent, not hex, not a double.
+bool is_float_literal(std::string_view token) {
+  if (token.size() > 1 && token[0] == '0' && (token[1] == 'x' || token[1] == 'X')) return false;
+  if (token.size() > 2 && (token.substr(token.size() - 2) == "lf" || token.substr(token.size() - 2) == "LF")) return false;
+  return token.find_first_of(".eE") != std::string_view::npos;
+}
+
+// The end of the number that starts at `at`: digits, letters (suffixes, hex),
+// '.', and a sign right after an exponent's e.
+size_t number_end(std::string_view code, size_t at) {
+  const bool hex = code.size() > at + 1 && code[at] == '0' && (code[at + 1] == 'x' || code[at + 1] == 'X');
+  size_t i = at;
+  while (i < code.size()) {
+    const char c = code[i];
+    if (lexing::is_word_char(c) || c == '.') {
+      ++i;
+    } else if ((c == '+' || c == '-') && !hex && (code[i - 1] == 'e' || code[i - 1] == 'E')) {
+      ++i;
+    } else {
+      break;
+    }
+  }
+  return i;
+}
+
+}  // namespace
+
+LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir) {
+  LiftedLiterals out;
+  const std::string code = lexing::strip_comments(source.text);
+  if (code.find(kMark) != std::string::npos) {
+    out.ok = false;
+    return out;
+  }
+  std::vector<bool> user_file(source.files.size());
+  for (size_t f = 0; f < source.files.size(); ++f) user_file[f] = !under(source.files[f], shaderlib_dir);
+  auto user_line = [&](size_t line) {
+    if (line >= source.line_map.size()) return false;
+    const int file = source.line_map[line].file;
+    return file >= 0 && static_cast<size_t>(file) < user_file.size() && user_file[static_cast<size_t>(file)];
+  };
+
+  out.skeleton.reserve(code.size());
+  size_t line = 0;
+  bool line_start = true;
+  int braces = 0, parens = 0;
+  bool in_function = false, in_const = false;
+  char last = 0;  // the last character that was not blank
+  for (size_t i = 0; i < code.size();) {
+    const char c = code[i];
+    if (c == '\n') {
+      out.skeleton += c;
+      ++line, ++i;
+      line_start = true;
+      continue;
+    }
+    if (line_start) {
+      line_start = false;
+      const size_t first = lexing::skip_blanks(code, i);
+      if (first < code.size() && code[first] == '#') {  // a directive, with its continuation lines
+        size_t end = i;
+        while (true) {
+          end = code.find('\n', end);
+          if (end == std::string::npos) {
+            end = code.size();
+            break;
+          }
+          if (code[end - 1] != '\\') break;
+          ++line, ++end;  // a continuation line
+        }
+        out.skeleton.append(code, i, end - i);
+        i = end;
+        continue;
+      }
+    }
+    if (lexing::is_word_start(c)) {
+      size_t end = i;
+      while (end < code.size() && lexing::is_word_char(code[end])) ++end;
+      if (parens == 0 && std::string_view(code).substr(i, end - i) == "const") in_const = true;
+      out.skeleton.append(code, i, end - i);
+      i = end;
+      last = 'a';
+      continue;
+    }
+    if (lexing::is_digit(c) || (c == '.' && i + 1 < code.size() && lexing::is_digit(code[i + 1]))) {
+      const size_t end = number_end(code, i);
+      const std::string token = code.substr(i, end - i);
+      if (in_function && !in_const && user_line(line) && is_float_literal(token)) {
+        const float value = std::strtof(token.c_str(), nullptr);
+        if (!std::isfinite(value) || out.values.size() == kMaxTweaks) out.ok = false;
+        out.values.push_back(value);
+        out.skeleton += kMark;
+      } else {
+        out.skeleton += token;
+      }
+      i = end;
+      last = '0';
+      continue;
+    }
+    switch (c) {
+      case '(': ++parens; break;
+      case ')': --parens; break;
+      case '{':
+        if (braces++ == 0) in_function = last == ')';  // a body, not a struct or an initializer list
+        break;
+      case '}':
+        if (--braces <= 0) braces = 0, in_function = false;
+        break;
+      case ';':
+        if (parens == 0) in_const = false;
+        break;
+      default: break;
+    }
+    if (!lexing::is_blank(c)) last = c;
+    out.skeleton += c;
+    ++i;
+  }
+  return out;
+}
+
+Source twin_source(const Source& source, const LiftedLiterals& lifted) {
+  Source twin = source;
+  twin.text.clear();
+  twin.text.reserve(lifted.skeleton.size() + lifted.values.size() * 12);
+  size_t index = 0;
+  for (const char c : lifted.skeleton) {
+    if (c != kMark) {
+      twin.text += c;
+      continue;
+    }
+    twin.text += kTweakUniform;
+    twin.text += '[' + std::to_string(index++) + ']';
+  }
+  // The declaration goes before the first line of the user's files.
+  size_t first = 1;  // after the #version line, which may be the user's own
+  while (first < twin.line_map.size() && twin.line_map[first].file < 0) ++first;
+  size_t at = 0;
+  for (size_t l = 0; l < first && at != std::string::npos; ++l) {
+    at = twin.text.find('\n', at);
+    if (at != std::string::npos) ++at;
+  }
+  if (at == std::string::npos) at = twin.text.size();
+  const std::string declaration =
+      "uniform float " + std::string(kTweakUniform) + "[" + std::to_string(std::max<size_t>(lifted.values.size(), 1)) + "];\n";
+  twin.text.insert(at, declaration);
+  twin.line_map.insert(twin.line_map.begin() + static_cast<std::ptrdiff_t>(first), Origin{});
+  return twin;
+}
+
+}  // namespace rm

@@ -1,0 +1,174 @@
+// Number tweaks on the GPU: a save that changes only numbers is shown by
+// the scene's twin without a compile, draws what the exact program draws,
+// and the exact program follows at the next prepare().
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+
+#include "core/data_paths.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+#include "egl_fixture.h"
+#include "support.h"
+
+namespace rm {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+class TweakGpu : public test::EglTest {
+ protected:
+  Image render(const Scene& scene, glm::ivec2 size) {
+    FrameInputs in;
+    in.resolution = glm::vec3(size, 1.0f);
+    in.time = 1.0f;
+    return renderer_.render_image(*scene.program(), in, channels_, size);
+  }
+  // The largest difference of any channel of any pixel.
+  static float max_difference(const Image& a, const Image& b) {
+    float most = 0;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x)
+        for (int c = 0; c < 4; ++c) most = std::max(most, std::abs(a.pixel(x, y)[c] - b.pixel(x, y)[c]));
+    return most;
+  }
+
+  Renderer renderer_;
+  ChannelInputs channels_{};
+  TempDir dir_;
+};
+
+constexpr char kScene[] = R"(const float kSize = 0.5;
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  c = vec4(uv.x * 0.25, step(kSize, uv.y) * 0.5, 0.125, 1.0);
+}
+)";
+
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+TEST_F(TweakGpu, ANumberEditShowsAtOnceInTheTwinAndThenInTheExactProgram) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, kScene);
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  EXPECT_TRUE(scene.wants_twin());
+  ASSERT_TRUE(scene.prepare_twin());
+  scene.commit_twin();
+  EXPECT_FALSE(scene.wants_twin());
+
+  const std::string tweaked = with(kScene, "uv.x * 0.25", "uv.x * 0.75");
+  write_file(path, tweaked);
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().validate, 0.0) << "no glslang";
+  EXPECT_EQ(scene.times().driver, 0.0) << "no compile";
+  scene.commit();
+  EXPECT_TRUE(scene.tweaked());
+  EXPECT_EQ(scene.generation(), 2);
+  EXPECT_EQ(scene.source().text.find("0.25"), std::string::npos) << "the source is the tweak's";
+  const Image twin = render(scene, {16, 8});
+  EXPECT_NEAR(twin.pixel(15, 0)[0], 0.75f * 15.5f / 16.0f, 1e-6f);
+
+  TempDir other;
+  write_file(other / "scene.frag", tweaked);
+  Scene exact(other / "scene.frag", {});
+  ASSERT_EQ(exact.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(max_difference(twin, render(exact, {16, 8})), 0.0f);
+
+  // The same text again builds the exact program.
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_GT(scene.times().driver, 0.0);
+  scene.commit();
+  EXPECT_FALSE(scene.tweaked());
+  EXPECT_EQ(max_difference(render(scene, {16, 8}), twin), 0.0f);
+  EXPECT_EQ(scene.reload(), ReloadStatus::Unchanged);
+
+  // A code edit compiles; so does a const's number. The twin stays for the
+  // next number edit of a text of its skeleton.
+  for (const std::string& code : {with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"), with(kScene, "= 0.5", "= 0.75")}) {
+    write_file(path, code);
+    ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+    EXPECT_GT(scene.times().driver, 0.0);
+    scene.commit();
+    EXPECT_FALSE(scene.tweaked());
+  }
+  write_file(path, with(kScene, "0.125", "0.375"));
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().driver, 0.0);
+  scene.commit();
+  EXPECT_NEAR(render(scene, {16, 8}).pixel(0, 0)[2], 0.375f, 1e-6f);
+}
+
+TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, kScene);
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  ASSERT_TRUE(scene.prepare_twin());
+  scene.commit_twin();
+  write_file(path, with(kScene, "0.125", "0.625"));
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  write_file(path, with(kScene, "0.125,", "0.625 +,"));
+  EXPECT_EQ(scene.reload(), ReloadStatus::Failed);
+  EXPECT_EQ(scene.diagnostics().front().line, 4);
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.625f, 1e-6f);
+  // A number edit that mends it is a tweak again, without the errors.
+  write_file(path, with(kScene, "0.125", "0.5"));
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_TRUE(scene.latest_diagnostics().empty()) << join(scene.latest_diagnostics());
+  scene.commit();
+  EXPECT_TRUE(scene.tweaked());
+  EXPECT_TRUE(scene.diagnostics().empty());
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.5f, 1e-6f);
+}
+
+// Every example's twin draws the exact program's picture: the literals it
+// reads from rm_Tweak are the ones a constant may not need. (The edit
+// appends a 0 to the scene's last decimal number: new text, the same value.)
+class ExampleTwin : public TweakGpu, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(ExampleTwin, DrawsTheExactPicture) {
+  const fs::path original = fs::path(RM_SOURCE_DIR) / "examples" / GetParam();
+  const std::string text = test::read_file(original);
+  const std::regex decimal(R"(\b\d+\.\d+\b)");
+  std::smatch last;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), decimal);
+       it != std::sregex_iterator(); ++it)
+    last = *it;
+  ASSERT_FALSE(last.empty());
+  std::string edited = text;
+  edited.insert(static_cast<size_t>(last.position(0) + last.length(0)), "0");
+
+  bool edit = false;
+  FileSystem files = disk_file_system();
+  files.read = [&, disk = files.read](const fs::path& p, std::string* error) -> std::optional<std::string> {
+    if (edit && p == original) return edited;
+    return disk(p, error);
+  };
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  Scene scene(original, options, files);
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
+  const Image exact = render(scene, {64, 36});
+  ASSERT_TRUE(scene.prepare_twin()) << "the driver rejected the twin, or nothing was lifted";
+  scene.commit_twin();
+  edit = true;
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  scene.commit();
+  ASSERT_TRUE(scene.tweaked()) << last.str(0) << " is not lifted";
+  EXPECT_LT(max_difference(render(scene, {64, 36}), exact), 1e-3f);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, ExampleTwin,
+                         ::testing::Values("abstract.frag", "cubes.frag", "gallery.frag", "menger.frag",
+                                           "optics.frag", "room.frag", "shadertoy.frag", "tori.frag"),
+                         [](const auto& info) { return info.param.substr(0, info.param.find('.')); });
+
+}  // namespace
+}  // namespace rm

@@ -1,0 +1,109 @@
+// Number tweaks: which literals a twin reads from rm_Tweak, and which edits
+// keep the skeleton (a tweak) or change it (a code edit that compiles).
+#include "core/tweak.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+namespace rm {
+namespace {
+
+// A scene and a library file, served from memory: /lib stands for shaderlib.
+Source source_of(const std::string& scene, const std::string& library = "float libF() { return 0.75; }\n") {
+  FileSystem memory;
+  const std::map<fs::path, std::string> files{{"/s/scene.frag", "#include <rm/x.glsl>\n" + scene},
+                                               {"/lib/rm/x.glsl", library}};
+  memory.read = [files](const fs::path& p, std::string* error) -> std::optional<std::string> {
+    if (auto it = files.find(p); it != files.end()) return it->second;
+    *error = "no such file";
+    return std::nullopt;
+  };
+  memory.exists = [files](const fs::path& p) { return files.count(p) != 0; };
+  SourceOptions options;
+  options.shaderlib_dir = "/lib";
+  Source s = preprocess("/s/scene.frag", options, memory);
+  EXPECT_TRUE(s.ok()) << join(s.errors);
+  return s;
+}
+
+LiftedLiterals lift(const std::string& scene) { return lift_literals(source_of(scene), "/lib"); }
+
+constexpr char kScene[] = R"(#define GAIN 2.5
+const float kScale = 1.5;
+float glow = 0.5;
+struct Light { vec3 dir; };
+float shade(float x) {
+  const float k = 3.0;  // a const: a constant is needed
+  return x * 0.25 + k * 1e-2 /* 9.0 */ + float(2) + 0x1F + GAIN;
+}
+void mainImage(out vec4 c, in vec2 f) {
+  float a[2] = float[2](.5, 4.);
+  c = vec4(shade(f.x) * 1.0e+1, a[0], 7.0f, 1.0);
+}
+)";
+
+TEST(Tweak, OnlyFloatLiteralsInTheUsersFunctionBodiesAreLifted) {
+  const LiftedLiterals lifted = lift(kScene);
+  ASSERT_TRUE(lifted.ok);
+  // Not: the #define, the global const and initialiser, the local const,
+  // the comment, the ints, the hex, nor the library's 0.75.
+  EXPECT_EQ(lifted.values, (std::vector<float>{0.25f, 1e-2f, 0.5f, 4.0f, 10.0f, 7.0f, 1.0f}));
+  EXPECT_NE(lifted.skeleton.find("kScale = 1.5"), std::string::npos);
+  EXPECT_NE(lifted.skeleton.find("glow = 0.5"), std::string::npos);
+  EXPECT_NE(lifted.skeleton.find("k = 3.0"), std::string::npos);
+  EXPECT_NE(lifted.skeleton.find("return 0.75"), std::string::npos);
+}
+
+TEST(Tweak, ANumberEditKeepsTheSkeletonAndACodeEditChangesIt) {
+  const LiftedLiterals before = lift(kScene);
+  std::string scene = kScene;
+  scene.replace(scene.find("x * 0.25"), 8, "x * 0.375");
+  const LiftedLiterals number = lift(scene);
+  EXPECT_EQ(number.skeleton, before.skeleton);
+  EXPECT_EQ(number.values[0], 0.375f);
+
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"kScale = 1.5", "kScale = 1.25"},  // a global const
+           {"k = 3.0", "k = 3.5"},            // a local const
+           {"GAIN 2.5", "GAIN 2.0"},          // a macro
+           {"* 0.25", "* 1"},                 // a float become an int
+           {"x * 0.25", "x / 0.25"}}) {       // an operator
+    std::string code = kScene;
+    code.replace(code.find(from), from.size(), to);
+    EXPECT_NE(lift(code).skeleton, before.skeleton) << from << " -> " << to;
+  }
+  // A comment is not code: the same skeleton and values.
+  std::string commented = kScene;
+  commented.replace(commented.find("9.0"), 3, "12.0");
+  EXPECT_EQ(lift(commented).skeleton, before.skeleton);
+}
+
+TEST(Tweak, TheTwinReadsEachLiteralFromTheArrayDeclaredBeforeTheUsersLines) {
+  const Source source = source_of(kScene);
+  const LiftedLiterals lifted = lift_literals(source, "/lib");
+  const Source twin = twin_source(source, lifted);
+  EXPECT_NE(twin.text.find("uniform float rm_Tweak[7];"), std::string::npos);
+  EXPECT_NE(twin.text.find("x * rm_Tweak[0] + k * rm_Tweak[1]"), std::string::npos) << twin.text;
+  EXPECT_NE(twin.text.find("c = vec4(shade(f.x) * rm_Tweak[4], a[0], rm_Tweak[5], rm_Tweak[6]);"), std::string::npos);
+  // One line more, a host line: the user's lines map to where they did.
+  ASSERT_EQ(twin.line_map.size(), source.line_map.size() + 1);
+  const std::string first_user_line = "#define GAIN 2.5";
+  auto line_of = [](const Source& s, const std::string& text) {
+    return std::count(s.text.begin(), s.text.begin() + static_cast<std::ptrdiff_t>(s.text.find(text)), '\n');
+  };
+  EXPECT_EQ(twin.locate(static_cast<int>(line_of(twin, first_user_line)) + 1),
+            source.locate(static_cast<int>(line_of(source, first_user_line)) + 1));
+}
+
+TEST(Tweak, AFiniteLiteralAlwaysAndNeverMoreThanTheLimit) {
+  EXPECT_FALSE(lift("void mainImage(out vec4 c, in vec2 f) { c = vec4(1e99); }\n").ok);
+  std::string many = "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0)";
+  for (size_t i = 0; i < kMaxTweaks; ++i) many += " + 1.0";
+  EXPECT_FALSE(lift(many + "; }\n").ok);
+  EXPECT_TRUE(lift("void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0) + 1.0; }\n").ok);
+}
+
+}  // namespace
+}  // namespace rm
