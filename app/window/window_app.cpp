@@ -110,10 +110,20 @@ class WindowApp {
       else glfwWaitEventsTimeout(0.02);
       if (watcher_->changed()) load();
       if (const std::optional<ReloadStatus> built = builder_.finished()) {
-        if (*built == ReloadStatus::Swapped) project_.commit();
-        loaded(*built);
+        if (std::exchange(twin_build_, false)) {
+          if (*built == ReloadStatus::Swapped) project_.commit_twins();
+          if (options_.verbose)
+            std::cerr << "raymarching: twins " << (*built == ReloadStatus::Swapped ? "built" : "not built")
+                      << " for generation " << project_.generation() << " in "
+                      << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
+        } else {
+          if (*built == ReloadStatus::Swapped) project_.commit();
+          loaded(*built);
+        }
+        background_build_ = false;
         if (std::exchange(load_again_, false)) load();
       }
+      if (!builder_.busy()) background_build();
       if (busy() && !quit_) frame(redraw_needed());
     }
     // Gone from the screen at once: a build under way, the teardown and the
@@ -205,16 +215,36 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
-    // Each new program is drawn once into its pass's format, with what the
-    // pass reads now (a new pass, or a new image, reads nothing yet).
-    builder_.start([this, states = graph_.pass_states(project_)] {
-      return project_.prepare([&](const fs::path& pass, const Program& program) {
-        if (!warm_up_) return;
-        const auto state = states.find(pass);
-        if (state == states.end()) warm_up(program, RenderTarget::kFormat);
-        else warm_up(program, state->second.format, state->second.channels);
+    builder_.start([this, warm = warm_up_hook()] { return project_.prepare(warm); });
+  }
+
+  // Each new program is drawn once into its pass's format, with what the
+  // pass reads now (a new pass, or a new image, reads nothing yet).
+  OnBuilt warm_up_hook() {
+    return [this, states = graph_.pass_states(project_)](const fs::path& pass, const Program& program) {
+      if (!warm_up_) return;
+      const auto state = states.find(pass);
+      if (state == states.end()) warm_up(program, RenderTarget::kFormat);
+      else warm_up(program, state->second.format, state->second.channels);
+    };
+  }
+
+  // The builds nobody waits for (core/tweak.h), once the saves have paused:
+  // a tweak's exact program, and the twins that show the next number edit
+  // at once. They leave the picture moving at its pace.
+  void background_build() {
+    if (!builder_.available() || steady_ns() - last_swap_ns_ < kBackgroundDelayNs) return;
+    if (project_.tweaked() && settle_tried_ != project_.generation()) {
+      settle_tried_ = project_.generation();
+      background_build_ = true;
+      load();
+    } else if (project_.wants_twins()) {
+      background_build_ = twin_build_ = true;
+      twins_started_ns_ = steady_ns();
+      builder_.start([this, warm = warm_up_hook()] {
+        return project_.prepare_twins(warm) ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
       });
-    });
+    }
   }
 
   void loaded(ReloadStatus status) {
@@ -239,14 +269,18 @@ class WindowApp {
       take_user_uniforms();
       take_knobs();
       // A new program: the picture in progress is the old one's, and what
-      // the new one costs is unknown until a probe tile has measured it.
+      // the new one costs is unknown until a probe tile has measured it
+      // (a tweak's twin, or its exact program, costs what the last did).
       drawing_.reset();
-      budget_.forget();
-      buffer_cost_.clear();
+      if (!project_.tweaked() && !background_build_) {
+        budget_.forget();
+        buffer_cost_.clear();
+        last_moving_done_ = 0;
+        program_drawn_ = false;
+      }
       for (TiledShot& shot : shots_) shot.restart();  // a shot shows the scene as saved
-      last_moving_done_ = 0;
-      program_drawn_ = false;
       too_slow_ = false;
+      last_swap_ns_ = steady_ns();
     }
     dirty_ = true;  // a new program, or the stale badge and title
     ui_event();
@@ -255,7 +289,7 @@ class WindowApp {
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
                 << project_.generation();
       if (status == ReloadStatus::Swapped) {
-        std::cerr << " (rebuilt:";
+        std::cerr << (project_.tweaked() ? " (tweaked:" : " (rebuilt:");
         for (const fs::path& pass : project_.rebuilt()) std::cerr << ' ' << pass.filename().string();
         const ReloadTimes& t = project_.times();
         std::cerr << "; preprocess " << t.preprocess << " ms, glslang " << t.validate << " ms, driver compile+link "
@@ -868,12 +902,17 @@ class WindowApp {
   // input still draws at once.
   static constexpr long long kBuildFrameIntervalNs = 100'000'000;
   bool animation_due() const {
-    return !builder_.busy() || steady_ns() - last_moving_start_ >= kBuildFrameIntervalNs;
+    return !waiting_for_build() || steady_ns() - last_moving_start_ >= kBuildFrameIntervalNs;
   }
   // A picture at rest waits, in tiles or samples, while a reload is built:
   // the build gets the cores, and the new program may replace it anyway. A
   // moving picture keeps moving.
-  bool holds_for_build() const { return builder_.busy() && drawing_ && drawing_->resting; }
+  bool holds_for_build() const { return waiting_for_build() && drawing_ && drawing_->resting; }
+  // A build of a save is under way (not one in the background).
+  bool waiting_for_build() const { return builder_.busy() && !background_build_; }
+  // A background build starts this long after the last swap: saves come in
+  // bursts, and one that comes while it runs waits for it.
+  static constexpr long long kBackgroundDelayNs = 1'000'000'000;
   // A picture at rest still gathering supersamples (--refine).
   bool refining() const {
     return samples_ > 0 && samples_ < options_.refine && !iconified_ && !too_slow_ && project_.ready();
@@ -894,6 +933,10 @@ class WindowApp {
   // is destroyed, and its thread joined, before them.
   Builder builder_;
   bool load_again_ = false;  // a reload asked for while the builder was busy
+  bool background_build_ = false;  // the builder's build is background_build()'s
+  bool twin_build_ = false;        // ... and builds twins
+  int settle_tried_ = -1;          // the generation whose tweak's exact program was built
+  long long last_swap_ns_ = 0, twins_started_ns_ = 0;
   // The builder draws each new program once, so that llvmpipe generates its
   // code there and the window's first draw finds it in Mesa's shader cache.
   // With the cache off it would be generated twice.

@@ -5,10 +5,13 @@ driven by xdotool. Run as: xvfb-run -a python3 window_test.py RAYMARCHING
 Checks: the window opens; a mouse drag changes iMouse; F12 writes a PNG whose
 pixels match `render` of the same scene, time and mouse; an edit saved by
 rename shows up; a broken edit, and one that includes a FIFO, keeps the last
-good frame and reports file:line; the fix reloads; Q quits with status 0. A second window shows the
+good frame and reports file:line; the fix reloads; a number edit shows at
+once in the scene's twin, and then in its exact program, both as `render`
+draws the edited scene; Q quits with status 0. A second window shows the
 image a scene names with #pragma channel0 when no --channel0 is given. A
 project of three passes: a drag paints into a feedback buffer and F12 shows
-it, a key reaches the shader, and a save to one buffer rebuilds only it.
+it, a key reaches the shader, and a number edit of one buffer tweaks and
+then rebuilds only it.
 The interface (Dear ImGui), compared on the X screen itself (xwd) with F12:
 hidden it is exactly F12; a broken save puts text over the kept picture and
 the fix takes it away; a slider drag changes the picture, not iMouse, and
@@ -159,6 +162,26 @@ def main():
     shot = take_shot()
     check("no screenshot is overwritten", set(before) < set(os.listdir(shots)), os.listdir(shots))
 
+    # A number edit, once the twin is built, shows without a compile
+    # (core/tweak.h); the exact program follows in the background.
+    check("the twin is built in the background",
+          wait_for(lambda: "twins built for generation 3 " in stderr(), timeout=20), stderr())
+    tweaked = os.path.join(work, "tweaked.frag")
+    with open(tweaked, "w") as f:
+        f.write(SCENE_V1.replace("iTime * 0.1", "iTime * 0.3"))
+    save_by_rename(scene, open(tweaked).read())
+    check("a number edit is a tweak: no glslang, no compile",
+          wait_for(lambda: re.search(r"reload ok generation 4 \(tweaked: scene\.frag; preprocess [0-9.e-]+ ms, "
+                                     r"glslang 0 ms, driver compile\+link 0 ms", stderr())), stderr())
+    wait_for(lambda: "presented generation 4" in stderr())
+    ok, detail = matches_render(take_shot(), tweaked, work)
+    check("the tweak's picture is the edited scene's", ok, detail)
+    check("its exact program follows",
+          wait_for(lambda: "reload ok generation 5 (rebuilt: scene.frag;" in stderr(), timeout=20), stderr())
+    wait_for(lambda: "presented generation 5" in stderr())
+    ok, detail = matches_render(take_shot(), tweaked, work)
+    check("... and draws the same picture", ok, detail)
+
     # V cycles the debug views; this scene has no shaderlib, so only nan.
     xdotool("key", "--window", window, "v")
     check("V switches to a debug view", wait_for(lambda: "(view: nan)" in xdotool("getwindowname", window)),
@@ -225,7 +248,8 @@ void mainImage(out vec4 c, in vec2 f) {
 def project_session():
     """A project of three passes in the window: a drag paints a stroke into a
     buffer that feeds itself, a key reaches the shader through the keyboard
-    texture, and a save to one buffer rebuilds only it and keeps the paint."""
+    texture, and a number edit of one buffer is a tweak of only it, then a
+    rebuild of only it, and the paint stays."""
     work = tempfile.mkdtemp(prefix="rm-e2e-project-")
     for name, text in (("buffer_a.frag", PAINT_A), ("buffer_b.frag", CONSTANT_B), ("image.frag", SHOW_AB)):
         with open(os.path.join(work, name), "w") as f:
@@ -256,11 +280,16 @@ def project_session():
     keyed = pixel(shot, 100, 100, work) if shot else None
     check("a key reaches the shader through the keyboard texture", keyed is not None and keyed[1] > 0.9, keyed)
 
+    # A number edit of one buffer: its twin shows it, then its exact program.
+    wait_for(lambda: "twins built for generation 1 " in open(err_path).read(), timeout=20)
     save_by_rename(os.path.join(work, "buffer_b.frag"), CONSTANT_B.replace("0.25", "0.75"))
-    check("a save to one buffer pass rebuilds only it",
-          wait_for(lambda: "reload ok generation 2 (rebuilt: buffer_b.frag;" in open(err_path).read()),
+    check("a number edit of one buffer pass is a tweak of only it",
+          wait_for(lambda: "reload ok generation 2 (tweaked: buffer_b.frag;" in open(err_path).read()),
           open(err_path).read())
-    wait_for(lambda: "presented generation 2" in open(err_path).read())
+    check("... and then only it is rebuilt",
+          wait_for(lambda: "reload ok generation 3 (rebuilt: buffer_b.frag;" in open(err_path).read(), timeout=20),
+          open(err_path).read())
+    wait_for(lambda: "presented generation 3" in open(err_path).read())
     shot = take_screenshot(window, out_path)
     after = pixel(shot, 100, 40, work) if shot else None
     check("... which shows, and the paint in the other buffer stays",
