@@ -65,6 +65,7 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
   int braces = 0, parens = 0;
   bool in_function = false, in_const = false;
   char last = 0;  // the last character that was not blank
+  std::string_view word, callee;  // the last word; the one before a '(' at file scope
   for (size_t i = 0; i < code.size();) {
     const char c = code[i];
     if (c == '\n') {
@@ -95,7 +96,8 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     if (lexing::is_word_start(c)) {
       size_t end = i;
       while (end < code.size() && lexing::is_word_char(code[end])) ++end;
-      if (parens == 0 && std::string_view(code).substr(i, end - i) == "const") in_const = true;
+      word = std::string_view(code).substr(i, end - i);
+      if (parens == 0 && word == "const") in_const = true;
       out.skeleton.append(code, i, end - i);
       i = end;
       last = 'a';
@@ -117,10 +119,13 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
       continue;
     }
     switch (c) {
-      case '(': ++parens; break;
+      case '(':
+        if (parens++ == 0 && braces == 0) callee = last == 'a' ? word : std::string_view();
+        break;
       case ')': --parens; break;
       case '{':
         if (braces++ == 0) in_function = last == ')';  // a body, not a struct or an initializer list
+        if (braces == 1 && in_function && callee == "main") out.main_bodies.push_back(out.skeleton.size() + 1);
         break;
       case '}':
         if (--braces <= 0) braces = 0, in_function = false;
@@ -134,21 +139,28 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     out.skeleton += c;
     ++i;
   }
+  if (out.main_bodies.empty()) out.ok = false;  // nowhere to set the globals
   return out;
 }
 
 Source twin_source(const Source& source, const LiftedLiterals& lifted) {
+  const size_t count = lifted.values.size();
+  auto global = [](size_t i) { return std::string(kTweakUniform) + "_" + std::to_string(i); };
+  std::string set;  // what main() does first
+  for (size_t i = 0; i < count; ++i) set += " " + global(i) + " = " + kTweakUniform + "[" + std::to_string(i) + "];";
   Source twin = source;
   twin.text.clear();
-  twin.text.reserve(lifted.skeleton.size() + lifted.values.size() * 12);
+  twin.text.reserve(lifted.skeleton.size() + count * 40 * (1 + lifted.main_bodies.size()));
   size_t index = 0;
-  for (const char c : lifted.skeleton) {
-    if (c != kMark) {
-      twin.text += c;
-      continue;
+  auto body = lifted.main_bodies.begin();
+  for (size_t at = 0; at < lifted.skeleton.size(); ++at) {
+    if (body != lifted.main_bodies.end() && *body == at) {
+      twin.text += set;
+      ++body;
     }
-    twin.text += kTweakUniform;
-    twin.text += '[' + std::to_string(index++) + ']';
+    const char c = lifted.skeleton[at];
+    if (c == kMark) twin.text += global(index++);
+    else twin.text += c;
   }
   // The declaration goes before the first line of the user's files.
   size_t first = 1;  // after the #version line, which may be the user's own
@@ -159,8 +171,9 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
     if (at != std::string::npos) ++at;
   }
   if (at == std::string::npos) at = twin.text.size();
-  const std::string declaration =
-      "uniform float " + std::string(kTweakUniform) + "[" + std::to_string(std::max<size_t>(lifted.values.size(), 1)) + "];\n";
+  std::string declaration = "uniform float " + std::string(kTweakUniform) + "[" + std::to_string(std::max<size_t>(count, 1)) + "];";
+  for (size_t i = 0; i < count; ++i) declaration += (i == 0 ? " float " : ", ") + global(i);
+  declaration += count > 0 ? ";\n" : "\n";
   twin.text.insert(at, declaration);
   twin.line_map.insert(twin.line_map.begin() + static_cast<std::ptrdiff_t>(first), Origin{});
   return twin;

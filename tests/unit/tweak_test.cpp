@@ -13,7 +13,9 @@ namespace {
 // A scene and a library file, served from memory: /lib stands for shaderlib.
 Source source_of(const std::string& scene, const std::string& library = "float libF() { return 0.75; }\n") {
   FileSystem memory;
-  const std::map<fs::path, std::string> files{{"/s/scene.frag", "#include <rm/x.glsl>\n" + scene},
+  const size_t body = scene.rfind("#version", 0) == 0 ? scene.find('\n') + 1 : 0;  // after a #version
+  const std::string text = scene.substr(0, body) + "#include <rm/x.glsl>\n" + scene.substr(body);
+  const std::map<fs::path, std::string> files{{"/s/scene.frag", text},
                                                {"/lib/rm/x.glsl", library}};
   memory.read = [files](const fs::path& p, std::string* error) -> std::optional<std::string> {
     if (auto it = files.find(p); it != files.end()) return it->second;
@@ -80,13 +82,18 @@ TEST(Tweak, ANumberEditKeepsTheSkeletonAndACodeEditChangesIt) {
   EXPECT_EQ(lift(commented).skeleton, before.skeleton);
 }
 
-TEST(Tweak, TheTwinReadsEachLiteralFromTheArrayDeclaredBeforeTheUsersLines) {
+TEST(Tweak, TheTwinReadsEachLiteralFromAGlobalThatMainSetsFromTheArray) {
   const Source source = source_of(kScene);
   const LiftedLiterals lifted = lift_literals(source, "/lib");
   const Source twin = twin_source(source, lifted);
-  EXPECT_NE(twin.text.find("uniform float rm_Tweak[7];"), std::string::npos);
-  EXPECT_NE(twin.text.find("x * rm_Tweak[0] + k * rm_Tweak[1]"), std::string::npos) << twin.text;
-  EXPECT_NE(twin.text.find("c = vec4(shade(f.x) * rm_Tweak[4], a[0], rm_Tweak[5], rm_Tweak[6]);"), std::string::npos);
+  EXPECT_NE(twin.text.find("uniform float rm_Tweak[7]; float rm_Tweak_0, rm_Tweak_1, rm_Tweak_2, rm_Tweak_3, "
+                           "rm_Tweak_4, rm_Tweak_5, rm_Tweak_6;\n"),
+            std::string::npos);
+  EXPECT_NE(twin.text.find("x * rm_Tweak_0 + k * rm_Tweak_1"), std::string::npos) << twin.text;
+  EXPECT_NE(twin.text.find("c = vec4(shade(f.x) * rm_Tweak_4, a[0], rm_Tweak_5, rm_Tweak_6);"), std::string::npos);
+  // The host's main() (a Shadertoy shader's) sets them first, on its own line.
+  EXPECT_NE(twin.text.find("void main() { rm_Tweak_0 = rm_Tweak[0]; rm_Tweak_1 = rm_Tweak[1];"), std::string::npos);
+  EXPECT_EQ(std::count(twin.text.begin(), twin.text.end(), '\n'), std::count(source.text.begin(), source.text.end(), '\n') + 1);
   // One line more, a host line: the user's lines map to where they did.
   ASSERT_EQ(twin.line_map.size(), source.line_map.size() + 1);
   const std::string first_user_line = "#define GAIN 2.5";
@@ -95,6 +102,20 @@ TEST(Tweak, TheTwinReadsEachLiteralFromTheArrayDeclaredBeforeTheUsersLines) {
   };
   EXPECT_EQ(twin.locate(static_cast<int>(line_of(twin, first_user_line)) + 1),
             source.locate(static_cast<int>(line_of(source, first_user_line)) + 1));
+}
+
+TEST(Tweak, EveryMainSetsTheGlobals) {
+  // A complete shader with a main() in each branch of an #if: both set them.
+  const std::string complete = "#version 450\nout vec4 o;\n#ifdef A\nvoid main() { o = vec4(0.5); }\n#else\n"
+                               "void main ( void )\n{\n  o = vec4(0.25);\n}\n#endif\n";
+  const Source source = source_of(complete);
+  const LiftedLiterals lifted = lift_literals(source, "/lib");
+  ASSERT_TRUE(lifted.ok);
+  EXPECT_EQ(lifted.main_bodies.size(), 2u);
+  const std::string twin = twin_source(source, lifted).text;
+  EXPECT_NE(twin.find("void main() { rm_Tweak_0 = rm_Tweak[0]; rm_Tweak_1 = rm_Tweak[1]; o = vec4(rm_Tweak_0); }"),
+            std::string::npos) << twin;
+  EXPECT_NE(twin.find("{ rm_Tweak_0 = rm_Tweak[0]; rm_Tweak_1 = rm_Tweak[1];\n  o = vec4(rm_Tweak_1);"), std::string::npos);
 }
 
 TEST(Tweak, AFiniteLiteralAlwaysAndNeverMoreThanTheLimit) {
