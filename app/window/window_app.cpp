@@ -263,6 +263,9 @@ class WindowApp {
     for (const Diagnostic& d : diags) (d.severity == Severity::Error ? model_.errors : model_.warnings).push_back(d);
     if (project_.ready()) use_ = project_.inputs_read();
     model_.has_picture = project_.ready();
+    // A tweak's exact program draws what its twin drew: the picture in
+    // progress, or its refinement, goes on.
+    const bool same_picture = status == ReloadStatus::Swapped && background_build_ && !project_.tweaked();
     if (status == ReloadStatus::Swapped) {
       shown_source_ = building_source_;
       take_.reloaded(shown_source_, project_);
@@ -271,7 +274,7 @@ class WindowApp {
       // A new program: the picture in progress is the old one's, and what
       // the new one costs is unknown until a probe tile has measured it
       // (a tweak's twin, or its exact program, costs what the last did).
-      drawing_.reset();
+      if (!same_picture) drawing_.reset();
       if (!project_.tweaked() && !background_build_) {
         budget_.forget();
         buffer_cost_.clear();
@@ -282,7 +285,7 @@ class WindowApp {
       too_slow_ = false;
       last_swap_ns_ = steady_ns();
     }
-    dirty_ = true;  // a new program, or the stale badge and title
+    if (!same_picture) dirty_ = true;  // a new program, or the stale badge and title
     ui_event();
     if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
     if (options_.verbose) {

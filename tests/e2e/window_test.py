@@ -7,7 +7,8 @@ pixels match `render` of the same scene, time and mouse; an edit saved by
 rename shows up; a broken edit, and one that includes a FIFO, keeps the last
 good frame and reports file:line; the fix reloads; a number edit shows at
 once in the scene's twin, and then in its exact program, both as `render`
-draws the edited scene; Q quits with status 0. A second window shows the
+draws the edited scene; Q quits with status 0. A number edit of a still is
+refined in its twin, and its exact program does not draw it again. A second window shows the
 image a scene names with #pragma channel0 when no --channel0 is given. A
 project of three passes: a drag paints into a feedback buffer and F12 shows
 it, a key reaches the shader, and a number edit of one buffer tweaks and
@@ -547,9 +548,52 @@ def idle_costs_nothing():
           f"frames drawn: {static_frames} vs {drag_frames}")
 
 
+STILL = """void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  c = vec4(uv.x * 0.5, sin(uv.y * 12.0) * 0.5 + 0.5, 0.25, 1.0);
+}
+"""
+
+
+def tweak_at_rest():
+    """A number edit of a still: the twin's picture is refined to its
+    samples, and the exact program that follows neither draws nor refines
+    it again; F12 then matches `render` of the edited scene."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-still-")
+    scene = os.path.join(work, "still.frag")
+    with open(scene, "w") as f:
+        f.write(STILL)
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work)
+    window = first_frame_window(proc, "still.frag", err_path)
+    if not window:
+        check("a still opens in the window", False, open(err_path).read())
+        return
+    log = lambda: open(err_path).read()  # noqa: E731
+    wait_for(lambda: "twins built for generation 1 " in log(), timeout=20)
+    tweaked = os.path.join(work, "tweaked.frag")
+    with open(tweaked, "w") as f:
+        f.write(STILL.replace("0.25, 1.0", "0.75, 1.0"))
+    save_by_rename(scene, open(tweaked).read())
+    check("a number edit of a still is a tweak, refined to its samples",
+          wait_for(lambda: re.search(r"\(tweaked: still\.frag;[^\n]*\n(.*\n)*raymarching: sample 16 of 16", log())),
+          log())
+    check("its exact program follows",
+          wait_for(lambda: "reload ok generation 3 (rebuilt: still.frag;" in log(), timeout=20), log())
+    time.sleep(0.5)
+    after = log().split("reload ok generation 3 (rebuilt: still.frag;")[1]
+    check("... and draws the still neither again nor refines it again",
+          not re.search(r"raymarching: (picture|sample) ", after), after)
+    ok, detail = matches_render(take_screenshot(window, out_path), tweaked, work)
+    check("F12 of the refined tweak matches `render` of the edited scene", ok, detail)
+    status = quit_with(proc, window, "q")
+    check("Q quits the still with status 0", status == 0, status)
+
+
 if __name__ == "__main__":
     try:
         main()
+        tweak_at_rest()
         scene_default_channel()
         project_session()
         interface_session()
