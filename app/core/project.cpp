@@ -183,9 +183,9 @@ bool Project::wants_twins() const {
   return std::any_of(passes_.begin(), passes_.end(), [](const Pass& p) { return p.scene->wants_twin(); });
 }
 
-bool Project::prepare_twins(const OnBuilt& on_built) {
+bool Project::prepare_twins(const OnBuilt& on_built, const std::function<bool()>& cancelled) {
   bool any = false;
-  for (const Pass& pass : passes_) any = pass.scene->prepare_twin(on_built) || any;
+  for (const Pass& pass : passes_) any = pass.scene->prepare_twin(on_built, cancelled) || any;
   return any;
 }
 

@@ -88,7 +88,7 @@ class Project {
   bool wants_twins() const;  // a running pass may have a twin not built yet
   // Builds the running passes' twins, under prepare()'s terms (true: some
   // are ready to commit_twins()).
-  bool prepare_twins(const OnBuilt& on_built = {});
+  bool prepare_twins(const OnBuilt& on_built = {}, const std::function<bool()>& cancelled = {});
   void commit_twins();
   // -I/-D for every pass, and for the image pass alone (a debug view); they
   // apply at the next reload().

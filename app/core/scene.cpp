@@ -135,18 +135,24 @@ void Scene::discard() {
   attempted_ = false;  // the next prepare() builds it again (from the cache)
 }
 
-bool Scene::prepare_twin(const OnBuilt& on_built) {
+bool Scene::prepare_twin(const OnBuilt& on_built, const std::function<bool()>& cancelled) {
+  auto give_up = [&] {
+    twin_checked_ = -1;  // wanted still
+    return false;
+  };
   twin_checked_ = generation_;
   if (!program_ || showing_twin_) return false;
   LiftedLiterals lifted = lift_literals(good_source_, options_.shaderlib_dir);
   if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed_twin_) return false;
   if (twin_ && twin_->skeleton == lifted.skeleton) return false;
+  if (cancelled && cancelled()) return give_up();
   Diagnostics ignored;  // the exact program built: a twin the driver rejects is only not there
   std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &ignored);
   if (!built) {
     failed_twin_ = std::move(lifted.skeleton);
     return false;
   }
+  if (cancelled && cancelled()) return give_up();
   if (on_built) on_built(path_, *built);
   pending_twin_ = Twin{std::move(lifted.skeleton), std::move(*built)};
   return true;

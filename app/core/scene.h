@@ -76,7 +76,9 @@ class Scene {
   bool wants_twin() const { return program_ && !showing_twin_ && twin_checked_ != generation_; }
   // Builds the running program's twin (true: one is ready to commit_twin()),
   // under the same terms as prepare(): it may run on the builder's thread.
-  bool prepare_twin(const OnBuilt& on_built = {});
+  // It gives up, to be asked again, where `cancelled` says so: before the
+  // driver's compile, and before the warm-up.
+  bool prepare_twin(const OnBuilt& on_built = {}, const std::function<bool()>& cancelled = {});
   void commit_twin();
   const Source& source() const { return good_source_; }  // of the running program
   // glslang's preprocessor output for the running program's text followed by

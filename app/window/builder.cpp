@@ -20,6 +20,7 @@ Builder::~Builder() {
 
 void Builder::start(std::function<ReloadStatus()> build) {
   done_ = false;
+  cancel_ = false;
   thread_ = std::thread([this, build = std::move(build)] {
     glfwMakeContextCurrent(context_);
     status_ = build();

@@ -30,11 +30,14 @@ class Builder {
   void start(std::function<ReloadStatus()> build);
   // The finished build's status, once; nullopt while one runs or none did.
   std::optional<ReloadStatus> finished();
+  // Asks the build under way to stop where it can (it reads cancelled()).
+  void cancel() { cancel_ = true; }
+  bool cancelled() const { return cancel_; }
 
  private:
   GLFWwindow* context_ = nullptr;
   std::thread thread_;
-  std::atomic<bool> done_{false};
+  std::atomic<bool> done_{false}, cancel_{false};
   ReloadStatus status_ = ReloadStatus::Unchanged;
 };
 

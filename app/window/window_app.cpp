@@ -113,7 +113,8 @@ class WindowApp {
         if (std::exchange(twin_build_, false)) {
           if (*built == ReloadStatus::Swapped) project_.commit_twins();
           if (options_.verbose)
-            std::cerr << "raymarching: twins " << (*built == ReloadStatus::Swapped ? "built" : "not built")
+            std::cerr << "raymarching: twins "
+                      << (*built == ReloadStatus::Swapped ? "built" : builder_.cancelled() ? "put off" : "not built")
                       << " for generation " << project_.generation() << " in "
                       << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
         } else {
@@ -206,6 +207,7 @@ class WindowApp {
   void load() {
     if (builder_.busy()) {
       load_again_ = true;
+      if (twin_build_) builder_.cancel();  // a save goes before a twin
       return;
     }
     project_.set_options(source_, with_view(source_, view_));
@@ -241,8 +243,10 @@ class WindowApp {
     } else if (project_.wants_twins()) {
       background_build_ = twin_build_ = true;
       twins_started_ns_ = steady_ns();
+      if (options_.verbose) std::cerr << "raymarching: building twins at " << twins_started_ns_ << '\n';
       builder_.start([this, warm = warm_up_hook()] {
-        return project_.prepare_twins(warm) ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
+        return project_.prepare_twins(warm, [this] { return builder_.cancelled(); }) ? ReloadStatus::Swapped
+                                                                                    : ReloadStatus::Unchanged;
       });
     }
   }

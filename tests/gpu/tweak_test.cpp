@@ -105,6 +105,29 @@ TEST_F(TweakGpu, ANumberEditShowsAtOnceInTheTwinAndThenInTheExactProgram) {
   EXPECT_NEAR(render(scene, {16, 8}).pixel(0, 0)[2], 0.375f, 1e-6f);
 }
 
+TEST_F(TweakGpu, ATwinBuildGivesUpWhenCancelledAndIsWantedStill) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, kScene);
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  int asked = 0;
+  EXPECT_FALSE(scene.prepare_twin({}, [&] { return ++asked >= 1; }));  // before the compile
+  EXPECT_EQ(asked, 1);
+  EXPECT_TRUE(scene.wants_twin());
+  bool warmed = false;
+  asked = 0;
+  EXPECT_FALSE(scene.prepare_twin([&](const fs::path&, const Program&) { warmed = true; },
+                                  [&] { return ++asked >= 2; }));  // compiled, before the warm-up
+  EXPECT_FALSE(warmed);
+  EXPECT_TRUE(scene.wants_twin());
+  ASSERT_TRUE(scene.prepare_twin({}, [] { return false; }));
+  scene.commit_twin();
+  EXPECT_FALSE(scene.wants_twin());
+  write_file(path, with(kScene, "0.125", "0.375"));
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  EXPECT_TRUE(scene.tweaked());
+}
+
 TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak) {
   const auto path = dir_ / "scene.frag";
   write_file(path, kScene);
