@@ -133,7 +133,7 @@ ReloadStatus Project::reload() {
   return status;
 }
 
-ReloadStatus Project::prepare(const OnBuilt& on_built) {
+ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled) {
   pending_.reset();
   diagnostics_.clear();
   times_ = {};
@@ -146,7 +146,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built) {
       image_path_,
       [&](const fs::path& file) -> const Source* {
         Scene& scene = scene_for(file);
-        const ReloadStatus status = scene.prepare(on_built);
+        const ReloadStatus status = scene.prepare(on_built, cancelled);
         times_ += scene.times();
         if (status == ReloadStatus::Swapped) swapped.push_back(file);
         const Diagnostics& diags = scene.latest_diagnostics();
@@ -183,7 +183,7 @@ bool Project::wants_twins() const {
   return std::any_of(passes_.begin(), passes_.end(), [](const Pass& p) { return p.scene->wants_twin(); });
 }
 
-bool Project::prepare_twins(const OnBuilt& on_built, const std::function<bool()>& cancelled) {
+bool Project::prepare_twins(const OnBuilt& on_built, const Cancelled& cancelled) {
   bool any = false;
   for (const Pass& pass : passes_) any = pass.scene->prepare_twin(on_built, cancelled) || any;
   return any;

@@ -80,7 +80,8 @@ class Project {
   // it may run on a thread whose GL context shares this one's objects, while
   // this one draws. Nothing else may be called on the project meanwhile but
   // the drawing's reads: passes(), image(), the programs and their sources.
-  ReloadStatus prepare(const OnBuilt& on_built = {});
+  // `cancelled` puts off the exact build of a tweak (Scene::prepare).
+  ReloadStatus prepare(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit();
   // Number tweaks (core/tweak.h), over every pass. tweaked(): a pass shows a
   // tweak with its twin, and the next prepare() builds the exact program.
@@ -88,7 +89,7 @@ class Project {
   bool wants_twins() const;  // a running pass may have a twin not built yet
   // Builds the running passes' twins, under prepare()'s terms (true: some
   // are ready to commit_twins()).
-  bool prepare_twins(const OnBuilt& on_built = {}, const std::function<bool()>& cancelled = {});
+  bool prepare_twins(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit_twins();
   // -I/-D for every pass, and for the image pass alone (a debug view); they
   // apply at the next reload().

@@ -40,7 +40,12 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ReloadStatus Scene::prepare(const OnBuilt& on_built) {
+ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled) {
+  auto put_off = [&] {
+    if (!showing_twin_ || !cancelled || !cancelled()) return false;
+    attempted_ = false;  // the next prepare() builds it
+    return true;
+  };
   discard();
   times_ = {};
   auto start = std::chrono::steady_clock::now();
@@ -70,6 +75,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built) {
       return ReloadStatus::Swapped;
     }
   }
+  if (put_off()) return ReloadStatus::Unchanged;
   std::string active;
   start = std::chrono::steady_clock::now();
   Diagnostics diags = validate(source, &active, knob_probes());
@@ -78,6 +84,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built) {
     diagnostics_ = std::move(diags);
     return ReloadStatus::Failed;
   }
+  if (put_off()) return ReloadStatus::Unchanged;
   Diagnostics driver;
   start = std::chrono::steady_clock::now();
   std::optional<Program> built = Program::build(source, &driver);
@@ -86,6 +93,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built) {
     diagnostics_ = std::move(driver);
     return ReloadStatus::Failed;
   }
+  if (put_off()) return ReloadStatus::Unchanged;
   if (on_built) {
     start = std::chrono::steady_clock::now();
     on_built(path_, *built);
@@ -135,7 +143,7 @@ void Scene::discard() {
   attempted_ = false;  // the next prepare() builds it again (from the cache)
 }
 
-bool Scene::prepare_twin(const OnBuilt& on_built, const std::function<bool()>& cancelled) {
+bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
   auto give_up = [&] {
     twin_checked_ = -1;  // wanted still
     return false;

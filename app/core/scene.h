@@ -26,6 +26,8 @@ struct ReloadTimes {
 // Called with each program a reload compiled anew (not one from the cache),
 // and the pass file it belongs to.
 using OnBuilt = std::function<void(const fs::path& pass, const Program&)>;
+// Asked between a build's stages: true puts the build off (a background one).
+using Cancelled = std::function<bool()>;
 
 enum class ReloadStatus {
   Swapped,    // a new program is running
@@ -51,7 +53,9 @@ class Scene {
   // to commit(); discard() keeps it cached and the running one running.
   // prepare() touches nothing that drawing the running program reads, so it
   // may run on another thread whose GL context shares this one's objects;
-  ReloadStatus prepare(const OnBuilt& on_built = {});
+  // The exact build of a tweak (only it: the picture on screen is right)
+  // is put off where `cancelled` says so, before each stage, as Unchanged.
+  ReloadStatus prepare(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit();
   void discard();
   // The source of the prepared program if there is one, else the running one's.
@@ -78,7 +82,7 @@ class Scene {
   // under the same terms as prepare(): it may run on the builder's thread.
   // It gives up, to be asked again, where `cancelled` says so: before the
   // driver's compile, and before the warm-up.
-  bool prepare_twin(const OnBuilt& on_built = {}, const std::function<bool()>& cancelled = {});
+  bool prepare_twin(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit_twin();
   const Source& source() const { return good_source_; }  // of the running program
   // glslang's preprocessor output for the running program's text followed by

@@ -1,5 +1,6 @@
 #include "core/tweak.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 

@@ -119,6 +119,10 @@ class WindowApp {
                       << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
         } else {
           if (*built == ReloadStatus::Swapped) project_.commit();
+          if (background_build_ && builder_.cancelled() && *built == ReloadStatus::Unchanged) {
+            settle_tried_ = -1;  // put off: built again once saves pause
+            if (options_.verbose) std::cerr << "raymarching: the tweak's exact program put off at " << steady_ns() << '\n';
+          }
           loaded(*built);
         }
         background_build_ = false;
@@ -207,7 +211,7 @@ class WindowApp {
   void load() {
     if (builder_.busy()) {
       load_again_ = true;
-      if (twin_build_) builder_.cancel();  // a save goes before a twin
+      if (background_build_) builder_.cancel();  // a save goes before a twin, or a tweak's exact program
       return;
     }
     project_.set_options(source_, with_view(source_, view_));
@@ -217,7 +221,9 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
-    builder_.start([this, warm = warm_up_hook()] { return project_.prepare(warm); });
+    builder_.start([this, warm = warm_up_hook()] {
+      return project_.prepare(warm, [this] { return builder_.cancelled(); });
+    });
   }
 
   // Each new program is drawn once into its pass's format, with what the

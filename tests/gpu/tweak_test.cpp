@@ -128,6 +128,32 @@ TEST_F(TweakGpu, ATwinBuildGivesUpWhenCancelledAndIsWantedStill) {
   EXPECT_TRUE(scene.tweaked());
 }
 
+TEST_F(TweakGpu, ATweaksExactBuildIsPutOffWhenCancelledAndOnlyIt) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, kScene);
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  ASSERT_TRUE(scene.prepare_twin());
+  scene.commit_twin();
+  write_file(path, with(kScene, "0.125", "0.375"));
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  ASSERT_TRUE(scene.tweaked());
+  for (int stage = 1; stage <= 3; ++stage) {  // before glslang, the driver, the warm-up
+    int asked = 0;
+    EXPECT_EQ(scene.prepare({}, [&] { return ++asked >= stage; }), ReloadStatus::Unchanged) << stage;
+    EXPECT_EQ(asked, stage);
+    EXPECT_TRUE(scene.tweaked());
+    EXPECT_EQ(scene.generation(), 2);
+  }
+  ASSERT_EQ(scene.prepare({}, [] { return false; }), ReloadStatus::Swapped);
+  scene.commit();
+  EXPECT_FALSE(scene.tweaked());
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.375f, 1e-6f);
+  // A build that is not a tweak's is never put off.
+  write_file(path, with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"));
+  EXPECT_EQ(scene.prepare({}, [] { return true; }), ReloadStatus::Swapped);
+}
+
 TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak) {
   const auto path = dir_ / "scene.frag";
   write_file(path, kScene);
