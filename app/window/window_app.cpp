@@ -924,7 +924,7 @@ class WindowApp {
   // A build of a save is under way (not one in the background).
   bool waiting_for_build() const { return builder_.busy() && !background_build_; }
   // A background build starts this long after the last swap: saves come in
-  // bursts, and one that comes while it runs waits for it.
+  // bursts, and one that comes while it runs puts it off at its next stage.
   static constexpr long long kBackgroundDelayNs = 1'000'000'000;
   // A picture at rest still gathering supersamples (--refine).
   bool refining() const {

@@ -19,6 +19,18 @@ namespace {
 using test::TempDir;
 using test::write_file;
 
+constexpr char kScene[] = R"(const float kSize = 0.5;
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  c = vec4(uv.x * 0.25, step(kSize, uv.y) * 0.5, 0.125, 1.0);
+}
+)";
+
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
 class TweakGpu : public test::EglTest {
  protected:
   Image render(const Scene& scene, glm::ivec2 size) {
@@ -36,22 +48,18 @@ class TweakGpu : public test::EglTest {
     return most;
   }
 
+  // kScene written to `path` and loaded into `scene`, with its twin built.
+  static void load_with_twin(Scene& scene, const fs::path& path) {
+    write_file(path, kScene);
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+    ASSERT_TRUE(scene.prepare_twin());
+    scene.commit_twin();
+  }
+
   Renderer renderer_;
   ChannelInputs channels_{};
   TempDir dir_;
 };
-
-constexpr char kScene[] = R"(const float kSize = 0.5;
-void mainImage(out vec4 c, in vec2 f) {
-  vec2 uv = f / iResolution.xy;
-  c = vec4(uv.x * 0.25, step(kSize, uv.y) * 0.5, 0.125, 1.0);
-}
-)";
-
-std::string with(std::string text, const std::string& from, const std::string& to) {
-  text.replace(text.find(from), from.size(), to);
-  return text;
-}
 
 TEST_F(TweakGpu, ANumberEditShowsAtOnceInTheTwinAndThenInTheExactProgram) {
   const auto path = dir_ / "scene.frag";
@@ -130,11 +138,8 @@ TEST_F(TweakGpu, ATwinBuildGivesUpWhenCancelledAndIsWantedStill) {
 
 TEST_F(TweakGpu, ATweaksExactBuildIsPutOffWhenCancelledAndOnlyIt) {
   const auto path = dir_ / "scene.frag";
-  write_file(path, kScene);
   Scene scene(path, {});
-  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
-  ASSERT_TRUE(scene.prepare_twin());
-  scene.commit_twin();
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path));
   write_file(path, with(kScene, "0.125", "0.375"));
   ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
   ASSERT_TRUE(scene.tweaked());
@@ -156,11 +161,8 @@ TEST_F(TweakGpu, ATweaksExactBuildIsPutOffWhenCancelledAndOnlyIt) {
 
 TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak) {
   const auto path = dir_ / "scene.frag";
-  write_file(path, kScene);
   Scene scene(path, {});
-  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
-  ASSERT_TRUE(scene.prepare_twin());
-  scene.commit_twin();
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path));
   write_file(path, with(kScene, "0.125", "0.625"));
   ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
   write_file(path, with(kScene, "0.125,", "0.625 +,"));
