@@ -81,8 +81,16 @@ std::string strip_comments(std::string_view text) {
   out.reserve(text.size());
   for (size_t i = 0; i < text.size(); ++i) {
     if (text.compare(i, 2, "//") == 0) {
-      while (i < text.size() && text[i] != '\n') ++i;
-      if (i < text.size()) out += '\n';
+      // The compiler splices a line that ends in a backslash onto the next
+      // before it looks for comments, so such a comment goes on there.
+      for (;;) {
+        while (i < text.size() && text[i] != '\n') ++i;
+        if (i == text.size()) break;
+        out += '\n';
+        const bool spliced = (i >= 1 && text[i - 1] == '\\') || (i >= 2 && text[i - 1] == '\r' && text[i - 2] == '\\');
+        if (!spliced) break;
+        ++i;
+      }
     } else if (text.compare(i, 2, "/*") == 0) {
       const size_t end = text.find("*/", i + 2);
       const size_t stop = end == std::string_view::npos ? text.size() : end;

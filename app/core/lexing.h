@@ -40,7 +40,8 @@ bool has_word(std::string_view text, std::string_view word);
 bool has_call(std::string_view text, std::string_view name, std::string_view after = {});
 
 // The text with its comments replaced by the newlines they held, so that
-// lines keep their numbers. An unterminated /* runs to the end.
+// lines keep their numbers. An unterminated /* runs to the end, and a //
+// comment whose line ends in a backslash runs on into the next line.
 std::string strip_comments(std::string_view text);
 
 }  // namespace rm::lexing

@@ -58,6 +58,26 @@ TEST(Tweak, OnlyFloatLiteralsInTheUsersFunctionBodiesAreLifted) {
   EXPECT_NE(lifted.skeleton.find("return 0.75"), std::string::npos);
 }
 
+// The compiler splices a line that ends in a backslash onto the next before it
+// strips comments (glslang warns of it), so a // comment so ended swallows the
+// next line: no code, and no number to lift. Lifted, the twin's text would
+// hold a line the scene's program does not. With \n and with \r\n.
+TEST(Tweak, ACommentThatEndsInABackslashSwallowsTheNextLine) {
+  for (const std::string eol : {"\n", "\r\n"}) {
+    const std::string scene = "float f(float x) {" + eol + "  // was: \\" + eol + "  x *= 3.5;" + eol +
+                              "  return x * 0.5;" + eol + "}" + eol +
+                              "void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }" + eol;
+    const Source source = source_of(scene);
+    const LiftedLiterals lifted = lift_literals(source, "/lib");
+    ASSERT_TRUE(lifted.ok);
+    EXPECT_EQ(lifted.values, std::vector<float>{0.5f});
+    EXPECT_EQ(lifted.skeleton.find("3.5"), std::string::npos);
+    // Every line keeps its number.
+    EXPECT_EQ(std::count(lifted.skeleton.begin(), lifted.skeleton.end(), '\n'),
+              std::count(source.text.begin(), source.text.end(), '\n'));
+  }
+}
+
 TEST(Tweak, ANumberEditKeepsTheSkeletonAndACodeEditChangesIt) {
   const LiftedLiterals before = lift(kScene);
   std::string scene = kScene;
