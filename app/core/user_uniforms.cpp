@@ -34,6 +34,10 @@ bool host_supplies(std::string_view name) {
   return name.substr(0, 8) == "iChannel" || name.substr(0, 5) == "u_tex";
 }
 
+// shaderlib's own uniforms (rm/common.glsl's rm_Zero, which no one sets):
+// the library's, not the scene's to control.
+bool library_uniform(std::string_view name) { return name.substr(0, 3) == "rm_"; }
+
 std::optional<float> number(std::string_view text) {
   const std::string s(text);
   char* end = nullptr;
@@ -193,7 +197,7 @@ UserUniforms find_user_uniforms(const Source& source, const std::string* given) 
       while (p < code.size() && code[p] != ',' && code[p] != ';') ++p;
       const bool more = p < code.size() && code[p] == ',';
       ++p;
-      if (host_supplies(name) || found.find(std::string(name))) {
+      if (host_supplies(name) || library_uniform(name) || found.find(std::string(name))) {
         if (!more) break;
         continue;
       }

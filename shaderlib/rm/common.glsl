@@ -1,5 +1,5 @@
 // rm/common.glsl: constants and small helpers the other modules share.
-// Provides: RM_PI, RM_TAU, rmMaxComponent, rmMinComponent, rmDot2, rmNdot,
+// Provides: RM_PI, RM_TAU, RM_ZERO, rmMaxComponent, rmMinComponent, rmDot2, rmNdot,
 //   rmOrthogonalIntersection, rmSafeNormalize, rmSinCosQuarter.
 // Needs: nothing.
 // Naming: sd* are signed distances, op* operators on distances or on points,
@@ -9,6 +9,12 @@
 
 #define RM_PI 3.14159265358979
 #define RM_TAU 6.28318530717959
+// 0, but not to the compiler: a loop from RM_ZERO cannot be unrolled, so the
+// program holds one copy of its body. Mesa unrolls short constant loops, and
+// a copy of map() in each turn costs compile time (iq's ZERO trick). No host
+// sets rm_Zero: GL gives every uniform 0 when the program links.
+uniform int rm_Zero;
+#define RM_ZERO rm_Zero
 
 // Largest component of v.
 float rmMaxComponent(vec2 v) { return max(v.x, v.y); }

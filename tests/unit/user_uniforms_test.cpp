@@ -3,6 +3,7 @@
 // uniforms in inactive #if blocks, and the values `--set` gives.
 #include <gtest/gtest.h>
 
+#include "core/data_paths.h"
 #include "core/user_uniforms.h"
 #include "support.h"
 
@@ -70,6 +71,22 @@ TEST(UserUniforms, OnlyTheActiveCodeCounts) {
                                      "// uniform float commented;\n");
   ASSERT_EQ(u.uniforms.size(), 1u);
   EXPECT_EQ(u.uniforms[0].name, "shown");
+}
+
+// shaderlib's own uniform (rm/common.glsl's rm_Zero, which no one sets) is
+// the library's, not a control of the scene's.
+TEST(UserUniforms, ShaderlibsOwnUniformIsNoControl) {
+  test::TempDir dir;
+  test::write_file(dir / "s.frag", "#include <rm/common.glsl>\nuniform float gain;\n"
+                                   "void mainImage(out vec4 c, in vec2 f) { c = vec4(gain); }\n");
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  const Source source = preprocess(dir / "s.frag", options);
+  ASSERT_TRUE(source.ok()) << join(source.errors);
+  ASSERT_NE(source.text.find("uniform int rm_Zero;"), std::string::npos);
+  const UserUniforms u = find_user_uniforms(source);
+  ASSERT_EQ(u.uniforms.size(), 1u);
+  EXPECT_EQ(u.uniforms[0].name, "gain");
 }
 
 TEST(UserUniforms, SetGivesValuesAndRefusesWhatDoesNotFit) {
