@@ -5,6 +5,7 @@
 # Program; the fuzz targets never call it, but it links against libepoxy.
 # supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's
 # offset; and inputs.cpp: the table records iDate as `render --date` reads it.
+# tweak.cpp lifts a scene's numbers out of its text for the twin.
 # glslang itself runs in the worker, a program of its own
 # (RM_GLSLANG_WORKER_SOURCES): both lists build with the glslang_worker/
 # protocol.
@@ -22,6 +23,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/inputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/program.cpp
   ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tweak.cpp
 )
 set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/main.cpp

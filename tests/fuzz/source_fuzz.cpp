@@ -11,7 +11,9 @@
 // The first chunk is /fuzz/scene.frag; each "@@ NAME" line starts the file
 // /fuzz/NAME. <rm/...> resolves in /fuzz (the shaderlib root), -I is /fuzz/inc.
 // Checked: no crash or hang, and every line of the output maps back to a file
-// the preprocessor read (or to the host). Built as check_fuzz (RM_FUZZ_CHECK),
+// the preprocessor read (or to the host). The output's numbers are then lifted
+// for a twin (core/tweak), which must keep every line where it was and hold
+// as many marks as values, never more than the limit. Built as check_fuzz (RM_FUZZ_CHECK),
 // the result also goes through glslang's validation and the log mapping, and
 // every diagnostic must print as one line.
 #include <cstdint>
@@ -20,6 +22,7 @@
 #include <string>
 
 #include "core/source.h"
+#include "core/tweak.h"
 #ifdef RM_FUZZ_CHECK
 #include "core/check.h"
 #endif
@@ -82,6 +85,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (lines != source.line_map.size()) std::abort();
     for (const rm::Origin& o : source.line_map)
       if (o.file >= static_cast<int>(source.files.size())) std::abort();
+    const rm::LiftedLiterals lifted = rm::lift_literals(source, options.shaderlib_dir);
+    if (lifted.ok) {
+      size_t skeleton_lines = 0, marks = 0;
+      for (char c : lifted.skeleton) skeleton_lines += c == '\n', marks += c == '\x01';
+      if (skeleton_lines != lines || marks != lifted.values.size() || marks > rm::kMaxTweaks) std::abort();
+      for (size_t at : lifted.main_bodies)
+        if (at == 0 || at > lifted.skeleton.size() || lifted.skeleton[at - 1] != '{') std::abort();
+      const rm::Source twin = rm::twin_source(source, lifted);
+      size_t twin_lines = 0;
+      for (char c : twin.text) twin_lines += c == '\n';
+      if (twin_lines != twin.line_map.size()) std::abort();
+    }
 #ifdef RM_FUZZ_CHECK
     for (const rm::Diagnostic& d : rm::validate(source))
       if (d.str().find('\n') != std::string::npos) std::abort();
