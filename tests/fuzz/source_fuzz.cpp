@@ -13,9 +13,9 @@
 // Checked: no crash or hang, and every line of the output maps back to a file
 // the preprocessor read (or to the host). The output's numbers are then lifted
 // for a twin (core/tweak), which must keep every line where it was and hold
-// as many marks as values, never more than the limit. Built as check_fuzz (RM_FUZZ_CHECK),
-// the result also goes through glslang's validation and the log mapping, and
-// every diagnostic must print as one line.
+// as many marks as values, never more than the limit. Built as check_fuzz
+// (RM_FUZZ_CHECK), the result also goes through glslang's validation and the
+// log mapping, and every diagnostic must print as one line.
 #include <cstdint>
 #include <cstdlib>
 #include <map>
