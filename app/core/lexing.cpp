@@ -81,6 +81,7 @@ std::string strip_comments(std::string_view text) {
   out.reserve(text.size());
   for (size_t i = 0; i < text.size(); ++i) {
     if (text.compare(i, 2, "//") == 0) {
+      out += ' ';
       // The compiler splices a line that ends in a backslash onto the next
       // before it looks for comments, so such a comment goes on there.
       for (;;) {
@@ -94,12 +95,33 @@ std::string strip_comments(std::string_view text) {
     } else if (text.compare(i, 2, "/*") == 0) {
       const size_t end = text.find("*/", i + 2);
       const size_t stop = end == std::string_view::npos ? text.size() : end;
+      out += ' ';
       for (size_t j = i; j < stop; ++j)
         if (text[j] == '\n') out += '\n';
       i = end == std::string_view::npos ? text.size() : end + 1;
     } else {
       out += text[i];
     }
+  }
+  return out;
+}
+
+std::string code_only(std::string_view text) {
+  const std::string code = strip_comments(text);
+  std::string out;
+  out.reserve(code.size());
+  for (size_t i = 0; i < code.size();) {
+    if (!is_blank(code[i])) {
+      out += code[i++];
+      continue;
+    }
+    size_t end = i;
+    while (end < code.size() && is_blank(code[end])) ++end;
+    // One space for the run, none before a line's end (unless a backslash
+    // stands before it: a backslash, blanks and a newline splice no lines).
+    const bool line_end = end == code.size() || code[end] == '\n';
+    if (!line_end || (!out.empty() && out.back() == '\\')) out += ' ';
+    i = end;
   }
   return out;
 }

@@ -39,9 +39,15 @@ bool has_word(std::string_view text, std::string_view word);
 // just before it ("void main(").
 bool has_call(std::string_view text, std::string_view name, std::string_view after = {});
 
-// The text with its comments replaced by the newlines they held, so that
-// lines keep their numbers. An unterminated /* runs to the end, and a //
-// comment whose line ends in a backslash runs on into the next line.
+// The text with each comment replaced by a blank (it parts tokens, as in
+// the compiler) and the newlines it held, so that lines keep their numbers.
+// An unterminated /* runs to the end, and a // comment whose line ends in a
+// backslash runs on into the next line.
 std::string strip_comments(std::string_view text);
+
+// The text as the compiler's tokens see it: comments gone, each run of
+// blanks one space, none at a line's end. Two texts with the same code
+// compile to the same program.
+std::string code_only(std::string_view text);
 
 }  // namespace rm::lexing

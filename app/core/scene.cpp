@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/knobs.h"
+#include "core/lexing.h"
 #include "core/tweak.h"
 
 namespace rm {
@@ -60,6 +61,12 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
     diagnostics_ = source.errors;
     return ReloadStatus::Failed;
   }
+  // Only comments changed: the program would be the one on screen, so it and
+  // its picture stay. Not after a failed save (its errors are on screen), nor
+  // while a tweak shows (its exact program is still to be built).
+  if (program_ && !showing_twin_ && count_errors(diagnostics_) == 0 && source.text != good_source_.text &&
+      lexing::code_only(source.text) == lexing::code_only(good_source_.text))
+    return ReloadStatus::Unchanged;
   for (auto it = cache_.begin(); it != cache_.end(); ++it) {
     if (it->text != source.text) continue;
     pending_ = std::move(*it);
@@ -69,7 +76,9 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
   }
   if (twin_ && source.text != good_source_.text) {
     LiftedLiterals lifted = lift_literals(source, options_.shaderlib_dir);
-    if (lifted.ok && lifted.skeleton == twin_->skeleton) {
+    // The same tokens: comments and blanks may differ (a comment-only save
+    // left the twin's text behind).
+    if (lifted.ok && lexing::code_only(lifted.skeleton) == lexing::code_only(twin_->skeleton)) {
       pending_tweak_ = Tweak{std::move(source), std::move(lifted.values)};
       pending_diagnostics_.clear();  // not the last attempt's errors
       return ReloadStatus::Swapped;

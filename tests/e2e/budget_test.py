@@ -161,7 +161,9 @@ def heavy_buffer_scaled(work):
     # A save makes a new program, whose buffer nothing has measured: Q as
     # soon as it is swapped in. Drawn whole, even at the smallest scale, the
     # buffer held the window for over a second.
-    save_by_rename(os.path.join(work, "heavy_buffer.frag"), HEAVY_BUFFER.replace("heavy on purpose", "saved again"))
+    # (Code, not a comment: a save that changes only comments builds nothing.)
+    save_by_rename(os.path.join(work, "heavy_buffer.frag"),
+                   HEAVY_BUFFER.replace("// heavy on purpose", "// saved again\nconst float kSaved = 1.0;"))
     check("a save of the buffer makes a new program",
           wait_for(lambda: "reload ok generation 2" in open(err).read(), timeout=30, step=0.01), open(err).read()[-500:])
     status, took = quit_with_q(proc, window)

@@ -558,7 +558,8 @@ STILL = """void mainImage(out vec4 c, in vec2 f) {
 def tweak_at_rest():
     """A number edit of a still: the twin's picture is refined to its
     samples, and the exact program that follows neither draws nor refines
-    it again; F12 then matches `render` of the edited scene."""
+    it again; F12 then matches `render` of the edited scene. A save of
+    comments only then builds and draws nothing."""
     work = tempfile.mkdtemp(prefix="rm-e2e-still-")
     scene = os.path.join(work, "still.frag")
     with open(scene, "w") as f:
@@ -586,6 +587,14 @@ def tweak_at_rest():
           not re.search(r"raymarching: (picture|sample) ", after), after)
     ok, detail = matches_render(take_screenshot(window, out_path), tweaked, work)
     check("F12 of the refined tweak matches `render` of the edited scene", ok, detail)
+    # Comments and blanks only: the same program, so nothing is built and
+    # the still stays (it used to be shown again by the twin and refined anew).
+    before = len(log())
+    save_by_rename(scene, open(tweaked).read().replace("vec2 uv = f", "vec2 uv  =  f /* pixels */"))
+    time.sleep(2.0)
+    later = log()[before:]
+    check("a save of comments and blanks only neither rebuilds nor redraws the still",
+          "building generation" in later and not re.search(r"raymarching: (reload ok|picture|sample) ", later), later)
     status = quit_with(proc, window, "q")
     check("Q quits the still with status 0", status == 0, status)
 

@@ -193,6 +193,34 @@ TEST_F(Gpu, UnchangedSourceIsNotRecompiled) {
   EXPECT_EQ(scene.generation(), 1);
 }
 
+// A save that changes only comments would compile to the program on screen:
+// nothing is built, and the picture stays. A comment that ends in a
+// backslash swallows the next line (the compiler splices them): a change.
+// After a failed save, a comment-only edit of the good text is built, so
+// that the errors go.
+TEST_F(Gpu, ACommentOnlyEditIsNotRecompiled) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, "// one\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n  c.g = 0.5;\n}\n");
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  write_file(path, "// one, and more\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = /* white */ vec4(1.0);\n"
+                   "  c.g = 0.5;  // half\n}\n");
+  EXPECT_EQ(scene.reload(), ReloadStatus::Unchanged);
+  EXPECT_EQ(scene.times().validate, 0.0) << "no glslang";
+  EXPECT_EQ(scene.times().driver, 0.0) << "no compile";
+  EXPECT_EQ(scene.generation(), 1);
+
+  write_file(path, "// one\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);  // \\\n  c.g = 0.5;\n}\n");
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(render(scene, {2, 2}).pixel(0, 0)[1], 1.0f) << "c.g = 0.5 is part of the comment";
+
+  write_file(path, "// one\nvoid mainImage(out vec4 c, in vec2 f) { nope; }\n");
+  ASSERT_EQ(scene.reload(), ReloadStatus::Failed);
+  write_file(path, "// two\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);  // \\\n  c.g = 0.5;\n}\n");
+  EXPECT_EQ(scene.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(count_errors(scene.diagnostics()), 0) << join(scene.diagnostics());
+}
+
 TEST_F(Gpu, TiledRenderEqualsOnePass) {
   write_file(dir_ / "t.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, fract(f.x * 0.37 + f.y * 0.11), 1.0); }\n");
   Scene scene(dir_ / "t.frag", {});

@@ -113,6 +113,29 @@ TEST_F(TweakGpu, ANumberEditShowsAtOnceInTheTwinAndThenInTheExactProgram) {
   EXPECT_NEAR(render(scene, {16, 8}).pixel(0, 0)[2], 0.375f, 1e-6f);
 }
 
+// A save that changes only comments and blanks builds nothing and leaves the
+// exact program on screen; a number edit after it is still a tweak.
+TEST_F(TweakGpu, ANumberEditAfterACommentEditIsStillATweak) {
+  const auto path = dir_ / "scene.frag";
+  Scene scene(path, {});
+  load_with_twin(scene, path);
+  const std::string commented = with(kScene, "uv.x * 0.25", "uv.x /* red */ *  0.25");
+  write_file(path, commented);
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Unchanged);
+  EXPECT_EQ(scene.times().driver, 0.0) << "no compile";
+  EXPECT_FALSE(scene.tweaked());
+
+  write_file(path, with(commented, "0.25", "0.75"));
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().validate, 0.0) << "no glslang";
+  EXPECT_EQ(scene.times().driver, 0.0) << "no compile";
+  scene.commit();
+  EXPECT_TRUE(scene.tweaked());
+  Scene fresh(path, {});
+  ASSERT_EQ(fresh.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(render(scene, {8, 8}).rgba, render(fresh, {8, 8}).rgba);
+}
+
 TEST_F(TweakGpu, ATwinBuildGivesUpWhenCancelledAndIsWantedStill) {
   const auto path = dir_ / "scene.frag";
   write_file(path, kScene);
