@@ -64,7 +64,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
   // Only comments changed: the program would be the one on screen, so it and
   // its picture stay. Not after a failed save (its errors are on screen), nor
   // while a tweak shows (its exact program is still to be built).
-  if (program_ && !showing_twin_ && count_errors(diagnostics_) == 0 && source.text != good_source_.text &&
+  if (program_ && !showing_twin_ && count_errors(diagnostics_) == 0 &&
       lexing::code_only(source.text) == lexing::code_only(good_source_.text))
     return ReloadStatus::Unchanged;
   for (auto it = cache_.begin(); it != cache_.end(); ++it) {

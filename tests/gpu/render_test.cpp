@@ -209,6 +209,10 @@ TEST_F(Gpu, ACommentOnlyEditIsNotRecompiled) {
   EXPECT_EQ(scene.times().validate, 0.0) << "no glslang";
   EXPECT_EQ(scene.times().driver, 0.0) << "no compile";
   EXPECT_EQ(scene.generation(), 1);
+  // And back to the text on screen: no build either.
+  write_file(path, "// one\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n  c.g = 0.5;\n}\n");
+  EXPECT_EQ(scene.reload(), ReloadStatus::Unchanged);
+  EXPECT_EQ(scene.generation(), 1);
 
   write_file(path, "// one\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);  // \\\n  c.g = 0.5;\n}\n");
   ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
