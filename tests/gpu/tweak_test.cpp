@@ -118,7 +118,7 @@ TEST_F(TweakGpu, ANumberEditShowsAtOnceInTheTwinAndThenInTheExactProgram) {
 TEST_F(TweakGpu, ANumberEditAfterACommentEditIsStillATweak) {
   const auto path = dir_ / "scene.frag";
   Scene scene(path, {});
-  load_with_twin(scene, path);
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path));
   const std::string commented = with(kScene, "uv.x * 0.25", "uv.x /* red */ *  0.25");
   write_file(path, commented);
   ASSERT_EQ(scene.prepare(), ReloadStatus::Unchanged);
