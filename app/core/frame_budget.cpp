@@ -61,36 +61,60 @@ TilePlan::TilePlan(glm::ivec2 size, double tile_ms, double per_pixel_ms)
     : size_(size), tile_ms_(tile_ms), per_pixel_ms_(per_pixel_ms), typical_ms_(per_pixel_ms), y_top_(size.y),
       last_pixels_(per_pixel_ms > 0 ? double(size.x) * size.y : 0) {}
 
+namespace {
+
+// The side of a band's tiles for tiles of about `pixels`: a probe's, or for
+// a shader too heavy for that in the time, the largest of 8 and 4 that fits
+// (4 at the least).
+int band_side(double pixels) {
+  int side = TilePlan::kProbe;
+  while (side > TilePlan::kSmallest && double(side) * side > pixels) side /= 2;
+  return side;
+}
+
+}  // namespace
+
 glm::ivec4 TilePlan::next() const {
   // Twice the last tile at most: the cost of the rows ahead is unknown, and
-  // cheap sky above must not send the whole scene below into one tile.
+  // cheap sky above must not send the whole scene below into one tile. A
+  // picture of unknown cost starts with the smallest tile: a shader of
+  // seconds a probe holds the window for a sixteenth of that.
   const double probe = double(kProbe) * kProbe;
-  const double pixels =
-      per_pixel_ms_ > 0 ? std::min(tile_ms_ / per_pixel_ms_, std::max(probe, 2.0 * last_pixels_)) : probe;
+  const double pixels = per_pixel_ms_ > 0 ? std::min(tile_ms_ / per_pixel_ms_, std::max(probe, 2.0 * last_pixels_))
+                                          : double(kSmallest) * kSmallest;
   if (x_ == 0) {
     const int rows = static_cast<int>(std::min(pixels / size_.x, double(size_.y)));
-    if (rows >= kProbe || rows >= y_top_) {  // whole rows
+    if (rows >= kSmallest || rows >= y_top_) {  // whole rows
       const int h = std::min(rows, y_top_);
       return {0, y_top_ - h, size_.x, h};
     }
   }
   // A band of rows, drawn in parts from the left.
-  const int band = x_ > 0 ? band_ : std::min(kProbe, y_top_);
-  int width = std::clamp(static_cast<int>(pixels / band), std::min(kProbe, size_.x - x_), size_.x - x_);
-  // A rest of the band narrower than a probe goes with this tile: a sliver
-  // costs a draw of its own, and its cost per pixel, mostly the draw's, would
-  // send the next tile back to a probe (a reload's first picture of cubes
-  // took 61 tiles, not 10).
-  if (size_.x - x_ - width < kProbe) width = size_.x - x_;
+  const int band = x_ > 0 ? band_ : std::min(band_side(pixels), y_top_);
+  int width = std::clamp(static_cast<int>(pixels / band), std::min(band, size_.x - x_), size_.x - x_);
+  // A rest of the band narrower than its tiles' side goes with this tile: a
+  // sliver costs a draw of its own, and its cost per pixel, mostly the
+  // draw's, would send the next tile back to the smallest (a reload's first
+  // picture of cubes took 61 tiles, not 10). Not when the cost is known to
+  // be too high for both in one tile: a shader too heavy for a probe in the
+  // time is drawn in tiles no larger than its band's side, so the watchdog
+  // times each of them.
+  const int rest = size_.x - x_ - width;
+  const bool too_heavy = per_pixel_ms_ > 0 && double(width + rest) * band * per_pixel_ms_ > tile_ms_;
+  if (rest < band && !too_heavy) width += rest;
   return {x_, y_top_ - band, width, band};
 }
 
 void TilePlan::drawn(glm::ivec4 tile, double ms) {
   drawn_ms_ += ms;
-  last_pixels_ = double(tile.z) * tile.w;
+  // A band's last part is what was left of it, not a size the plan chose:
+  // it does not hold back the next tile's growth.
+  const double pixels = double(tile.z) * tile.w;
+  const bool rest_of_band = tile.x > 0 && tile.x + tile.z >= size_.x;
+  last_pixels_ = rest_of_band ? std::max(last_pixels_, pixels) : pixels;
   // The cost of this tile, but falling by at most half per tile, and never
   // under the picture's average when that is known.
-  const double cost = std::max(ms, 1e-6) / last_pixels_;
+  const double cost = std::max(ms, 1e-6) / pixels;
   per_pixel_ms_ = std::max({cost, per_pixel_ms_ / 2, typical_ms_});
   if (tile.x + tile.z >= size_.x) {
     x_ = 0;

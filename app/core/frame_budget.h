@@ -56,15 +56,19 @@ class ScaleController {
 // The next tile of a picture drawn in parts, rows from the top, sized so that
 // it takes about `tile_ms` at the cost per pixel measured on the last tile
 // (or the picture's average, if higher), and at most twice the last tile's
-// pixels, plus the rest of its band when that is narrower than a probe: no
-// such sliver is drawn alone. A picture of unknown cost starts with a probe
-// kProbe pixels square.
+// pixels (a probe's at the least), plus the rest of its band when that is
+// narrower than the band's tiles and both fit the time: no such sliver is
+// drawn alone. A shader too heavy for a probe kProbe pixels square in the
+// time is drawn in tiles of 8 or 4 pixels a side, and a picture of unknown
+// cost starts with one kSmallest pixels square, so that however heavy the
+// shader, one tile holds the window for as little as it can.
 class TilePlan {
  public:
-  static constexpr int kProbe = 16;  // the smallest tile's side, in pixels
+  static constexpr int kProbe = 16;    // a band's tiles' side, unless too heavy for it
+  static constexpr int kSmallest = 4;  // the smallest tile's side, in pixels
 
   // size: the picture's; per_pixel_ms: its average cost per pixel when
-  // known (the last frame's), or 0: then a probe tile finds out.
+  // known (the last frame's), or 0: then a smallest tile finds out.
   TilePlan(glm::ivec2 size, double tile_ms, double per_pixel_ms = 0);
 
   bool done() const { return y_top_ <= 0; }

@@ -22,8 +22,8 @@ namespace rm {
 class TiledShot {
  public:
   // The image pass of `inputs` at `size`, in parts of at most max_part
-  // pixels a side, in tiles of about tile_ms at per_pixel_ms (0: unknown, a
-  // probe tile first), for `path` with `metadata`.
+  // pixels a side, in tiles of about tile_ms at per_pixel_ms (0: unknown, the
+  // smallest tile first), for `path` with `metadata`.
   TiledShot(const FrameInputs& inputs, glm::ivec2 size, int max_part, double tile_ms, double per_pixel_ms,
             std::filesystem::path path, Metadata metadata);
 

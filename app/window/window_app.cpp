@@ -282,7 +282,7 @@ class WindowApp {
       take_user_uniforms();
       take_knobs();
       // A new program: the picture in progress is the old one's, and what
-      // the new one costs is unknown until a probe tile has measured it
+      // the new one costs is unknown until a first small tile has measured it
       // (a tweak's twin, or its exact program, costs what the last did).
       if (!same_picture) drawing_.reset();
       if (!project_.tweaked() && !background_build_) {
@@ -511,13 +511,15 @@ class WindowApp {
 
   // What a pixel of the current program costs at full size, as the budget
   // measured it for a window of `window` pixels; 0 before its first draw
-  // (a tile plan then starts with a probe).
+  // (a tile plan then starts with its smallest tile).
   double measured_per_pixel_ms(glm::ivec2 window) const {
     return program_drawn_ ? budget_.full_frame_ms() / (double(window.x) * window.y) : 0.0;
   }
 
-  // A probe-sized tile: the one the watchdog (--tile-limit) times.
-  static bool smallest_tile(glm::ivec4 tile) { return tile.z * tile.w <= TilePlan::kProbe * TilePlan::kProbe; }
+  // A tile of the smallest size, which the plan cannot make cheaper: the one
+  // the watchdog (--tile-limit) times. (A larger tile that overruns says
+  // only that the shader costs more there, and the next is smaller.)
+  static bool smallest_tile(glm::ivec4 tile) { return tile.z * tile.w <= TilePlan::kSmallest * TilePlan::kSmallest; }
 
   // The next frame's inputs for a picture of `window` at `scale` per axis:
   // its resolution, and the mouse's pixels in it.
@@ -576,12 +578,12 @@ class WindowApp {
       ++p.tiles;
       if (!straight) picture_.mark_drawn();
       // The first draw of a program also compiles it in the driver: not a measure of the shader.
-      const bool probe = smallest_tile(tile);
-      if (probe && program_drawn_ && ms > options_.tile_limit_s * 1000.0) {
+      const bool smallest = smallest_tile(tile);
+      if (smallest && program_drawn_ && ms > options_.tile_limit_s * 1000.0) {
         report_too_slow(project_.passes().back().file, tile, ms);
         return false;
       }
-      if (!program_drawn_ && probe) p.compile_ms = ms;
+      if (!program_drawn_ && smallest) p.compile_ms = ms;
       if (!program_drawn_ && options_.verbose)
         std::cerr << "raymarching: first draw of generation " << project_.generation() << ": a " << tile.z << "x"
                   << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";

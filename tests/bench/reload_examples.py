@@ -137,7 +137,7 @@ def main():
     work = tempfile.mkdtemp(prefix="rm-reload-")
     print("| scene | a number edit: save to whole picture, ms | tweaked | "
           "a code edit: save to first present, ms | save to whole picture, ms | preprocess | glslang | "
-          "driver compile+link | warm-up draw | the window's first draw (16x16) | "
+          "driver compile+link | warm-up draw | the window's first draw (its first tile) | "
           "a text built before: save to whole picture, ms |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     edits_path = os.path.join(os.path.dirname(os.path.abspath(csv_path)), "edits.csv")
