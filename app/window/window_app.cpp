@@ -516,21 +516,6 @@ class WindowApp {
     return program_drawn_ ? budget_.full_frame_ms() / (double(window.x) * window.y) : 0.0;
   }
 
-  // Waits for the tile drawn last, as glFinish would, and looks at the
-  // watcher every 2 ms meanwhile: a save made while a tile draws starts its
-  // build on the builder's thread at once, not once the tile is done (a
-  // moving picture is one tile of up to a budget). Only with a builder: a
-  // build in place would end the picture under way.
-  void wait_for_tile() {
-    GLsync done = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    GLbitfield flush = GL_SYNC_FLUSH_COMMANDS_BIT;
-    while (glClientWaitSync(done, flush, kWatchWhileDrawingNs) == GL_TIMEOUT_EXPIRED) {
-      flush = 0;
-      if (builder_.available() && watcher_->changed()) load();
-    }
-    glDeleteSync(done);
-  }
-
   // A tile of the smallest size, which the plan cannot make cheaper: the one
   // the watchdog (--tile-limit) times. (A larger tile that overruns says
   // only that the shader costs more there, and the next is smaller.)
@@ -587,7 +572,7 @@ class WindowApp {
       const GLuint target = straight ? 0 : picture_.target(p.size);
       const long long start = steady_ns();
       graph_.draw_image(project_, p.inputs, p.size, target, tile);
-      wait_for_tile();  // the tile is done: input is read before the next
+      glFinish();  // the tile is done: input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
       p.plan.drawn(tile, ms);
       ++p.tiles;
@@ -635,7 +620,7 @@ class WindowApp {
       const bool first_of_pass = p.buffer_plan->drawn_ms() == 0 && !buffer_cost_.count(file);
       const long long start = steady_ns();
       graph_.draw_pass_region(project_, index, p.inputs, tile);
-      wait_for_tile();  // the tile is done: input is read before the next
+      glFinish();  // the tile is done: input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
       if (smallest_tile(tile) && !first_of_pass && ms > options_.tile_limit_s * 1000.0) {
         report_too_slow(file, tile, ms);
@@ -943,8 +928,6 @@ class WindowApp {
   // A background build starts this long after the last swap: saves come in
   // bursts, and one that comes while it runs puts it off at its next stage.
   static constexpr long long kBackgroundDelayNs = 1'000'000'000;
-  // How often the watcher is looked at while a tile draws (wait_for_tile).
-  static constexpr GLuint64 kWatchWhileDrawingNs = 2'000'000;
   // A picture at rest still gathering supersamples (--refine).
   bool refining() const {
     return samples_ > 0 && samples_ < options_.refine && !iconified_ && !too_slow_ && project_.ready();

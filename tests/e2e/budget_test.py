@@ -245,42 +245,6 @@ def heavy_fixed_by_a_save(work):
     proc.wait(timeout=10)
 
 
-def build_starts_during_a_tile(work):
-    # With the budget off a moving picture is one tile, here of seconds: a
-    # save made while it draws starts its build at once (the window looks at
-    # the files while it waits for the tile), not once the tile is done. The
-    # save comes during the first picture, before any build in the background
-    # (twins): on llvmpipe a build's warm-up draw waits for the window's tile.
-    slow = HEAVY.replace("60000", "6000").replace("float a = 0.0;", "float a = iTime;")  # 3 s a picture
-    scene = os.path.join(work, "whole.frag")
-    with open(scene, "w") as f:
-        f.write(slow)
-    err = os.path.join(work, "whole.frag.stderr")
-    proc = open_window([BINARY, scene, "--size", "320x180", "-v", "--target-fps", "0"],
-                       os.path.join(work, "whole.frag.stdout"), err, work)
-    opened = wait_for(lambda: "reload ok generation 1 " in open(err).read(), timeout=30)
-    check("a slow animated window with the budget off opens", opened, open(err).read()[-500:])
-    if not opened:
-        proc.kill()
-        return
-    time.sleep(0.5)  # into its first picture, drawn whole
-    saved_ns = time.monotonic_ns()
-    save_by_rename(scene, LIGHT)
-    building = wait_for(lambda: re.search(r"building generation 2 at (\d+)", open(err).read()), timeout=30, step=0.01)
-    first_done = re.search(r"picture \d+x\d+ scale [0-9.e-]+ in \d+ tiles?, [0-9.e-]+ ms, done at (\d+)", open(err).read())
-    took = (int(building.group(1)) - saved_ns) / 1e9 if building else float("inf")
-    print(f"     save to its build's start, a whole picture of seconds under way: {took:.3f} s")
-    check("a save made while a whole picture draws starts its build within 0.5 s, before the picture is done",
-          building is not None and took < 0.5 and (first_done is None or int(first_done.group(1)) > int(building.group(1))),
-          open(err).read()[-600:])
-    check("... and the new program is shown",
-          wait_for(lambda: "presented generation 2" in open(err).read(), timeout=30), open(err).read()[-500:])
-    window = first_frame_window(proc, "whole.frag", err)
-    if window:
-        xdotool("key", "--window", window, "q")
-    check("and Q quits", proc.wait(timeout=30) == 0)
-
-
 def too_slow_session(work):
     scene, proc, err, _, window = start(work, "slow.frag", HEAVY, "a window with --tile-limit opens",
                                         "--tile-limit", "0.005")
@@ -483,7 +447,6 @@ if __name__ == "__main__":
         heavy_animated_replanned(work)
         tiled_feedback(work)
         heavy_fixed_by_a_save(work)
-        build_starts_during_a_tile(work)
         too_slow_session(work)
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
