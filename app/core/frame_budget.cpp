@@ -110,13 +110,13 @@ void TilePlan::drawn(glm::ivec4 tile, double ms) {
   // A band's last part is what was left of it, not a size the plan chose:
   // it does not hold back the next tile's growth.
   const double pixels = double(tile.z) * tile.w;
-  const bool rest_of_band = tile.x > 0 && tile.x + tile.z >= size_.x;
-  last_pixels_ = rest_of_band ? std::max(last_pixels_, pixels) : pixels;
+  const bool ends_band = tile.x + tile.z >= size_.x;
+  last_pixels_ = ends_band && tile.x > 0 ? std::max(last_pixels_, pixels) : pixels;
   // The cost of this tile, but falling by at most half per tile, and never
   // under the picture's average when that is known.
   const double cost = std::max(ms, 1e-6) / pixels;
   per_pixel_ms_ = std::max({cost, per_pixel_ms_ / 2, typical_ms_});
-  if (tile.x + tile.z >= size_.x) {
+  if (ends_band) {
     x_ = 0;
     band_ = 0;
     y_top_ = tile.y;

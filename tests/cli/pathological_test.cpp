@@ -1,7 +1,7 @@
 // Pathological input, as editors, generators and accidents make it: each case
 // either works or fails with one line naming the problem, within 10 s and
-// 1 GB (30 s and 2 GB sanitized), and never crashes or hangs. A case that checks clean is rendered too,
-// so the GL driver sees it as the window would.
+// 1 GB (30 s and 2 GB sanitized), and never crashes or hangs. A case that
+// checks clean is rendered too, so the GL driver sees it as the window would.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
