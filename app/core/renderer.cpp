@@ -29,17 +29,25 @@ Image RenderTarget::read() const {
 
 void set_sampling_state() { glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); }
 
-// A pass's one triangle, under the logic op COPY: it writes what the shader
-// writes, as no logic op does (and a float target ignores it). It is there
-// for llvmpipe, which generates an opaque shader's machine code twice, for
-// whole tiles and for tiles cut by an edge, and a shader that is not opaque
-// once: a fresh shader is ready 30-40% sooner (abstract 225 -> 140 ms), and
-// its frames cost the same (docs/performance.md).
-static void draw_pass_triangle() {
+// A pass's one triangle with `program`, under the logic op COPY: it writes
+// what the shader writes, as no logic op does (and a float target ignores
+// it). It is there for llvmpipe, which generates an opaque shader's machine
+// code twice, for whole tiles and for tiles cut by an edge, and a shader that
+// is not opaque once: a fresh shader is ready 30-40% sooner (abstract 225 ->
+// 140 ms), and its frames cost the same (docs/performance.md).
+// No program stays current after its draw. The driver keeps a program that
+// is deleted while current in some context until that context binds
+// another, and ImGui's backend saves GL_CURRENT_PROGRAM and binds it back
+// after drawing the interface: a scene program dropped from the cache while
+// the window held its picture was then freed by ImGui's own bind, and bound
+// back by a dead name (GL_INVALID_VALUE in glUseProgram).
+static void draw_triangle_with(GLuint program) {
+  glUseProgram(program);
   glEnable(GL_COLOR_LOGIC_OP);
   glLogicOp(GL_COPY);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_COLOR_LOGIC_OP);
+  glUseProgram(0);
 }
 
 void bind_channels(const Program& program, const ChannelInputs& channels) {
@@ -62,9 +70,8 @@ void warm_up(const Program& program, GLenum format, const ChannelInputs& channel
   bind_channels(program, channels);
   glBindFramebuffer(GL_FRAMEBUFFER, target.get());
   glViewport(0, 0, 1, 1);
-  glUseProgram(program.id());
   glBindVertexArray(vertices.get());
-  draw_pass_triangle();  // the state llvmpipe's code depends on, as the pass is drawn
+  draw_triangle_with(program.id());  // the state llvmpipe's code depends on, as the pass is drawn
   glFinish();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -111,9 +118,8 @@ void Renderer::draw_pass(const Program& program, const FrameInputs& in, const Ch
   for (int i = 0; i < 4; ++i)
     program.set_element("iChannelResolution", i, &channels[static_cast<size_t>(i)].resolution.x, 3);
   glViewport(0, 0, size.x, size.y);
-  glUseProgram(program.id());
   glBindVertexArray(vao_.get());
-  draw_pass_triangle();
+  draw_triangle_with(program.id());
 }
 
 void Renderer::add_sample(int index, glm::ivec2 size) const {
@@ -127,6 +133,7 @@ void Renderer::add_sample(int index, glm::ivec2 size) const {
   glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_BLEND);
+  glUseProgram(0);  // as after every draw (draw_triangle_with)
 }
 
 Image Renderer::render_image(const Program& program, FrameInputs inputs, const ChannelInputs& channels, glm::ivec2 size,

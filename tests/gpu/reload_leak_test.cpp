@@ -69,5 +69,42 @@ TEST_F(ReloadLeak, AlternatingGoodAndBrokenReloadsHoldNoMoreGlObjects) {
   EXPECT_EQ(warm.shaders, 0) << "shaders are deleted once linked";
 }
 
+
+// The window holds its picture while a storm of saves is built, so the
+// program it drew last can leave the cache of 8 before it draws again. ImGui's
+// backend then reads GL_CURRENT_PROGRAM, binds its own program and binds the
+// one it read back. A program deleted while current lingers until the
+// context binds another: ImGui's own bind freed it, and the bind back named a
+// dead program (GL_INVALID_VALUE in glUseProgram, e2e.session's storm).
+TEST_F(ReloadLeak, AProgramDroppedFromTheCacheAfterItDrewIsGoneAtOnce) {
+  test::TempDir dir;
+  const auto path = dir / "scene.frag";
+  Scene scene(path, {});
+  Renderer renderer;
+  RenderTarget target(4, 4);
+  const ChannelInputs channels{};
+  auto save = [&](int i) {
+    write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(" + std::to_string(i) + ".0 / 255.0); }\n");
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << i;
+  };
+  for (const int sample : {0, 1}) {  // a picture, and a supersample added to the mean
+    SCOPED_TRACE(sample);
+    save(100 * sample);
+    FrameInputs in;
+    in.resolution = {4, 4, 1};
+    in.sample = sample;
+    target.bind();
+    renderer.draw(*scene.program(), in, channels, {4, 4});
+    const GLuint drawn = scene.program()->id();
+    for (int i = 1; i <= 9; ++i) save(100 * sample + i);  // the drawn program leaves the cache
+    EXPECT_FALSE(glIsProgram(drawn)) << "a program the cache dropped is still held by the driver";
+    EXPECT_EQ(take_gl_census().programs, 10) << "the running program, the 8 cached and the sample pass";
+    GLint current = 0;  // what ImGui's backend does around the interface
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    glUseProgram(0);
+    glUseProgram(static_cast<GLuint>(current));  // the fixture fails the test on a GL error
+  }
+}
+
 }  // namespace
 }  // namespace rm
