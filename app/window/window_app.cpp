@@ -434,8 +434,10 @@ class WindowApp {
     }
     glfwSwapBuffers(window_);
     ui_frames_ = std::max(0, ui_frames_ - 1);
-    if (options_.verbose && presented_generation_ != project_.generation()) {
-      presented_generation_ = project_.generation();
+    // Only once the program has drawn into it: a picture held for a build
+    // (holds_for_build) shows the previous program's still.
+    if (options_.verbose && presented_generation_ != drawn_generation_) {
+      presented_generation_ = drawn_generation_;
       std::cerr << "raymarching: presented generation " << presented_generation_ << " at " << steady_ns() << '\n';
     }
     update_title(false);
@@ -572,6 +574,7 @@ class WindowApp {
       const GLuint target = straight ? 0 : picture_.target(p.size);
       const long long start = steady_ns();
       graph_.draw_image(project_, p.inputs, p.size, target, tile);
+      drawn_generation_ = project_.generation();
       glFinish();  // the tile is done: input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
       p.plan.drawn(tile, ms);
@@ -969,7 +972,7 @@ class WindowApp {
   ShaderClock clock_;
   FrameInputs inputs_;
   int errors_ = 0;
-  int presented_generation_ = -1;
+  int presented_generation_ = 0, drawn_generation_ = 0;  // of the last swap (-v), and of the last tile drawn
   bool shot_requested_ = false;
   std::deque<TiledShot> shots_;  // F12's pictures in progress, drawn in tiles, oldest first
   bool quit_ = false;

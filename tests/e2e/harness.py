@@ -145,12 +145,12 @@ def count_pixels(ppm_path, region, test):
     return count
 
 
-def first_frame_window(proc, title, stderr_path, timeout=20.0):
+def first_frame_window(proc, title, stderr_path, timeout=20.0, marker="presented generation 1"):
     """The id of the window titled `title` once the program (run with -v) has
-    presented its first frame; None, with the program killed, if either
-    does not come within `timeout`."""
+    presented its first frame (logged `marker`); None, with the program
+    killed, if either does not come within `timeout`."""
     window = wait_for(lambda: xdotool("search", "--name", title), timeout=timeout)
-    if not window or not wait_for(lambda: "presented generation 1" in open(stderr_path).read(), timeout=timeout):
+    if not window or not wait_for(lambda: marker in open(stderr_path).read(), timeout=timeout):
         proc.kill()
         return None
     return window.splitlines()[0]
