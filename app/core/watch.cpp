@@ -84,6 +84,8 @@ class InotifyWatcher final : public Watcher {
   }
 
   const char* backend() const override { return "inotify"; }
+  int event_fd() const override { return fd_; }
+  bool settling() const override { return debounce_.pending(); }
 
  private:
   int fd_;
@@ -119,6 +121,7 @@ class PollWatcher final : public Watcher {
   }
 
   const char* backend() const override { return "poll"; }
+  bool settling() const override { return debounce_.pending(); }
 
  private:
   struct Stamp {

@@ -34,6 +34,7 @@ class Debouncer {
   explicit Debouncer(WatchTiming timing) : timing_(timing) {}
   void note(WatchClock::time_point now, const fs::path& file, Event event);
   bool settled(WatchClock::time_point now);
+  bool pending() const { return pending_; }
 
  private:
   WatchTiming timing_;
@@ -52,6 +53,12 @@ class Watcher {
   // Takes in what happened since the last call; true once per settled change.
   virtual bool changed(WatchClock::time_point now = WatchClock::now()) = 0;
   virtual const char* backend() const = 0;
+  // A descriptor that turns readable when something happens in a watched
+  // directory, for a loop to sleep on (core/wake_on_readable.h); -1 where
+  // there is none (polling), and changed() must be asked every few ms.
+  virtual int event_fd() const { return -1; }
+  // A burst not settled yet: changed() must be asked again soon, events or not.
+  virtual bool settling() const = 0;
 };
 
 enum class WatchBackend { Auto, Inotify, Poll };

@@ -5,6 +5,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +27,8 @@
 #include "core/gl_debug.h"
 #include "core/glslang_client.h"
 #include "core/views.h"
+#include "core/wake_on_readable.h"
+#include "core/watch.h"
 #include "core/renderer.h"
 #include "core/knobs.h"
 #include "core/scene.h"
@@ -79,7 +82,8 @@ class WindowApp {
       : options_(options), window_(window), source_(options.source), building_source_(options.source),
         shown_source_(options.source),
         project_(project_files(options.scene, options.media), options.source, options.channels),
-        watcher_(make_watcher(options.watch)), graph_(renderer_), builder_(window), ui_(window),
+        watcher_(make_watcher(options.watch)), wake_on_save_(watcher_->event_fd(), [] { glfwPostEmptyEvent(); }),
+        graph_(renderer_), builder_(window), ui_(window),
         budget_(options.target_fps > 0 ? 1000.0 / options.target_fps : 0.0) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
     model_.values = &inputs_.uniforms;
@@ -99,16 +103,18 @@ class WindowApp {
     }
     loaded(project_.reload());
     while (!glfwWindowShouldClose(window_) && !quit_) {
-      // A picture that cannot change is drawn once: then sleep until an event,
-      // waking every 20 ms to look at the watcher (a save shows up that fast).
-      // A picture drawn in tiles comes back here between slices of tiles.
+      // A picture that cannot change is drawn once: then sleep until an event
+      // or a save (wake_on_save_), or until the watcher or a background build
+      // needs the loop (idle_wait_s). A picture drawn in tiles comes back
+      // here between slices of tiles.
       auto busy = [&] {
         return redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
                (refining() && !builder_.busy()) || shot_requested_ || (!shots_.empty() && !holds_for_build());
       };
       if (busy()) glfwPollEvents();
-      else glfwWaitEventsTimeout(0.02);
+      else glfwWaitEventsTimeout(idle_wait_s());
       if (watcher_->changed()) load();
+      wake_on_save_.rearm();
       if (const std::optional<ReloadStatus> built = builder_.finished()) {
         if (std::exchange(twin_build_, false)) {
           if (*built == ReloadStatus::Swapped) project_.commit_twins();
@@ -240,8 +246,11 @@ class WindowApp {
   // The builds nobody waits for (core/tweak.h), once the saves have paused:
   // a tweak's exact program, and the twins that show the next number edit
   // at once. They leave the picture moving at its pace.
+  bool wants_background_build() const {
+    return builder_.available() && ((project_.tweaked() && settle_tried_ != project_.generation()) || project_.wants_twins());
+  }
   void background_build() {
-    if (!builder_.available() || steady_ns() - last_swap_ns_ < kBackgroundDelayNs) return;
+    if (!wants_background_build() || steady_ns() - last_swap_ns_ < kBackgroundDelayNs) return;
     if (project_.tweaked() && settle_tried_ != project_.generation()) {
       settle_tried_ = project_.generation();
       background_build_ = true;
@@ -925,6 +934,17 @@ class WindowApp {
   // A picture at rest waits, in tiles or samples, while a reload is built:
   // the build gets the cores, and the new program may replace it anyway. A
   // moving picture keeps moving.
+  // How long the loop may sleep with nothing to draw. A save wakes it at
+  // once through the watcher's descriptor. A polling watcher, a burst of
+  // saves still settling, a build under way (whose moving picture is due
+  // every kBuildFrameInterval) and a background build coming due need it
+  // sooner. The cap bounds what a need not listed here would wait.
+  double idle_wait_s() const {
+    if (!wake_on_save_.active() || watcher_->settling() || builder_.busy()) return 0.02;
+    constexpr double kCap = 0.25;
+    if (!wants_background_build()) return kCap;
+    return std::clamp(double(last_swap_ns_ + kBackgroundDelayNs - steady_ns()) / 1e9, 0.001, kCap);
+  }
   bool holds_for_build() const { return waiting_for_build() && drawing_ && drawing_->resting; }
   // A build of a save is under way (not one in the background).
   bool waiting_for_build() const { return builder_.busy() && !background_build_; }
@@ -945,6 +965,7 @@ class WindowApp {
   SourceOptions building_source_, shown_source_;
   Project project_;
   std::unique_ptr<Watcher> watcher_;
+  WakeOnReadable wake_on_save_;  // after the watcher, whose descriptor it polls: its thread ends first
   Renderer renderer_;
   FrameGraph graph_;
   // After the project and the graph, whose textures its warm-up reads: it

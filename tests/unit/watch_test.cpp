@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <thread>
 
+#include "core/wake_on_readable.h"
 #include "support.h"
 
 namespace rm {
@@ -153,6 +155,49 @@ TEST(InotifyWatch, ARenameIsReportedWithoutTheQuietPeriod) {
   write_file(scene, "v3 in place\n");
   EXPECT_EQ(changes_during(*w, 200ms), 0);  // within the quiet period
   EXPECT_EQ(changes_during(*w, 600ms), 1);
+}
+
+
+// The window sleeps until a save instead of waking every 20 ms to ask: the
+// watcher's descriptor wakes it, once per rearm(), and a burst still
+// settling says so (the loop must then ask again soon, events or not).
+TEST(InotifyWatch, ASaveWakesASleepingLoopOncePerRearm) {
+  TempDir dir;
+  const auto scene = dir / "scene.frag";
+  write_file(scene, "v1\n");
+  auto w = make_watcher(WatchBackend::Inotify);
+  w->watch({scene});
+  std::atomic<int> wakes{0};
+  WakeOnReadable waker(w->event_fd(), [&] { ++wakes; });
+  ASSERT_TRUE(waker.active());
+  auto wakes_within = [&](std::chrono::milliseconds limit, int n) {
+    const auto end = WatchClock::now() + limit;
+    while (wakes < n && WatchClock::now() < end) std::this_thread::sleep_for(1ms);
+    return wakes.load();
+  };
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(wakes, 0) << "nothing happened yet";
+  write_file(scene, "v2 in place\n");
+  EXPECT_EQ(wakes_within(2000ms, 1), 1);
+  write_file(scene, "v3 in place\n");
+  std::this_thread::sleep_for(100ms);
+  EXPECT_EQ(wakes, 1) << "woken again before the loop read the first";
+  EXPECT_FALSE(w->changed());  // the loop reads: the burst is noted, not settled
+  EXPECT_TRUE(w->settling());
+  waker.rearm();
+  EXPECT_EQ(changes_during(*w, kSettle), 1);
+  EXPECT_FALSE(w->settling());
+  waker.rearm();
+  write_file(dir / ".scene.frag.tmp", "v4\n");
+  std::filesystem::rename(dir / ".scene.frag.tmp", scene);
+  EXPECT_EQ(wakes_within(2000ms, 2), 2) << "the next save, after rearm()";
+}
+
+TEST(PollWatch, HasNoDescriptorToSleepOn) {
+  auto w = make_watcher(WatchBackend::Poll);
+  EXPECT_EQ(w->event_fd(), -1);
+  WakeOnReadable waker(w->event_fd(), [] {});
+  EXPECT_FALSE(waker.active());
 }
 
 }  // namespace
