@@ -109,7 +109,7 @@ class WindowApp {
       // here between slices of tiles.
       auto busy = [&] {
         return redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
-               (refining() && !builder_.busy()) || shot_requested_ || (!shots_.empty() && !holds_for_build());
+               (refining() && !builder_.busy()) || shot_requested_ || (!shots_.empty() && !holds_shots());
       };
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(idle_wait_s());
@@ -132,6 +132,7 @@ class WindowApp {
           loaded(*built);
         }
         background_build_ = false;
+        shots_wait_for_build_ = false;
         if (std::exchange(load_again_, false)) load();
       }
       if (!builder_.busy()) background_build();
@@ -424,7 +425,7 @@ class WindowApp {
     else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
     // A screenshot in progress goes first: the picture waits for it, so
     // that each turn of the loop draws one slice of the budget, not two.
-    if (!shots_.empty() && !holds_for_build()) continue_shot();
+    if (!shots_.empty() && !holds_shots()) continue_shot();
     const bool straight = drawing_ && shots_.empty() && !holds_for_build() && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -837,6 +838,7 @@ class WindowApp {
     } else if (budget_.budget_ms() > 0) {
       // Drawn in tiles between the window's own (continue_shot), from the
       // cost per pixel the window measured.
+      shots_wait_for_build_ = waiting_for_build();
       shots_.emplace_back(in, size, renderer_.max_tile(), budget_.budget_ms(),
                           measured_per_pixel_ms(glm::ivec2(inputs_.resolution)), options_.shot_dir / name,
                           std::move(metadata));
@@ -946,6 +948,10 @@ class WindowApp {
     return std::clamp(double(last_swap_ns_ + kBackgroundDelayNs - steady_ns()) / 1e9, 0.001, kCap);
   }
   bool holds_for_build() const { return waiting_for_build() && drawing_ && drawing_->resting; }
+  // A shot waits for the build of a save under way when it was asked for, so
+  // that it shows the scene as saved, but for no build after that one: in a
+  // storm of saves it would wait for the storm's end.
+  bool holds_shots() const { return shots_wait_for_build_ && waiting_for_build(); }
   // A build of a save is under way (not one in the background).
   bool waiting_for_build() const { return builder_.busy() && !background_build_; }
   // A background build starts this long after the last swap: saves come in
@@ -996,6 +1002,7 @@ class WindowApp {
   int presented_generation_ = 0, drawn_generation_ = 0;  // of the last swap (-v), and of the last tile drawn
   bool shot_requested_ = false;
   std::deque<TiledShot> shots_;  // F12's pictures in progress, drawn in tiles, oldest first
+  bool shots_wait_for_build_ = false;  // see holds_shots()
   bool quit_ = false;
   bool iconified_ = false;
   InputUse use_;       // what the running program reads
