@@ -123,12 +123,18 @@ TEST_P(WatchTest, NewWatchListIsHonoured) {
 INSTANTIATE_TEST_SUITE_P(Backends, WatchTest, ::testing::Values(WatchBackend::Inotify, WatchBackend::Poll),
                          [](const auto& info) { return info.param == WatchBackend::Inotify ? "inotify" : "poll"; });
 
+// An inotify watcher of `scene`, written first with "v1".
+std::unique_ptr<Watcher> inotify_watching(const std::filesystem::path& scene, WatchTiming timing = {}) {
+  write_file(scene, "v1\n");
+  auto w = make_watcher(WatchBackend::Inotify, timing);
+  w->watch({scene});
+  return w;
+}
+
 TEST(InotifyWatch, HalfWrittenFileIsNotReportedUntilClosed) {
   TempDir dir;
   const auto scene = dir / "scene.frag";
-  write_file(scene, "v1\n");
-  auto w = make_watcher(WatchBackend::Inotify);
-  w->watch({scene});
+  auto w = inotify_watching(scene);
   int fd = open(scene.c_str(), O_WRONLY | O_TRUNC);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(write(fd, "void mainImage(", 15), 15);
@@ -143,11 +149,9 @@ TEST(InotifyWatch, HalfWrittenFileIsNotReportedUntilClosed) {
 TEST(InotifyWatch, ARenameIsReportedWithoutTheQuietPeriod) {
   TempDir dir;
   const auto scene = dir / "scene.frag";
-  write_file(scene, "v1\n");
   WatchTiming timing;
   timing.quiet = 400ms;
-  auto w = make_watcher(WatchBackend::Inotify, timing);
-  w->watch({scene});
+  auto w = inotify_watching(scene, timing);
   write_file(dir / ".scene.frag.tmp", "v2\n");
   std::filesystem::rename(dir / ".scene.frag.tmp", scene);
   EXPECT_TRUE(w->changed());
@@ -164,9 +168,7 @@ TEST(InotifyWatch, ARenameIsReportedWithoutTheQuietPeriod) {
 TEST(InotifyWatch, ASaveWakesASleepingLoopOncePerRearm) {
   TempDir dir;
   const auto scene = dir / "scene.frag";
-  write_file(scene, "v1\n");
-  auto w = make_watcher(WatchBackend::Inotify);
-  w->watch({scene});
+  auto w = inotify_watching(scene);
   std::atomic<int> wakes{0};
   WakeOnReadable waker(w->event_fd(), [&] { ++wakes; });
   ASSERT_TRUE(waker.active());
