@@ -936,6 +936,13 @@ class WindowApp {
   // A picture at rest waits, in tiles or samples, while a reload is built:
   // the build gets the cores, and the new program may replace it anyway. A
   // moving picture keeps moving.
+  bool holds_for_build() const { return waiting_for_build() && drawing_ && drawing_->resting; }
+  // A shot waits for the build of a save under way when it was asked for, so
+  // that it shows the scene as saved, but for no build after that one: in a
+  // storm of saves it would wait for the storm's end.
+  bool holds_shots() const { return shots_wait_for_build_ && waiting_for_build(); }
+  // A build of a save is under way (not one in the background).
+  bool waiting_for_build() const { return builder_.busy() && !background_build_; }
   // How long the loop may sleep with nothing to draw. A save wakes it at
   // once through the watcher's descriptor. A polling watcher, a burst of
   // saves still settling, a build under way (whose moving picture is due
@@ -947,13 +954,6 @@ class WindowApp {
     if (!wants_background_build()) return kCap;
     return std::clamp(double(last_swap_ns_ + kBackgroundDelayNs - steady_ns()) / 1e9, 0.001, kCap);
   }
-  bool holds_for_build() const { return waiting_for_build() && drawing_ && drawing_->resting; }
-  // A shot waits for the build of a save under way when it was asked for, so
-  // that it shows the scene as saved, but for no build after that one: in a
-  // storm of saves it would wait for the storm's end.
-  bool holds_shots() const { return shots_wait_for_build_ && waiting_for_build(); }
-  // A build of a save is under way (not one in the background).
-  bool waiting_for_build() const { return builder_.busy() && !background_build_; }
   // A background build starts this long after the last swap: saves come in
   // bursts, and one that comes while it runs puts it off at its next stage.
   static constexpr long long kBackgroundDelayNs = 1'000'000'000;
