@@ -34,7 +34,7 @@ void set_sampling_state() { glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); }
 // it). It is there for llvmpipe, which generates an opaque shader's machine
 // code twice, for whole tiles and for tiles cut by an edge, and a shader that
 // is not opaque once: a fresh shader is ready 30-40% sooner (abstract 225 ->
-// 140 ms), and its frames cost the same (docs/performance.md).
+// 140 ms), and its frames cost the same (docs/performance-history.md).
 // No program stays current after its draw. The driver keeps a program that
 // is deleted while current in some context until that context binds
 // another, and ImGui's backend saves GL_CURRENT_PROGRAM and binds it back

@@ -1,5 +1,5 @@
-// Benchmark behind docs/performance.md. Needs a display (run under xvfb-run):
-//   reload_bench RAYMARCHING SCENE_FOR_VALIDATION > docs/performance.md
+// Benchmark behind the start-up section of docs/performance.md (scripts/bench
+// startup). Needs a display (run under xvfb-run): reload_bench RAYMARCHING SCENE_FOR_VALIDATION
 // Measures, with the real program in a real window:
 //   - cold start: from spawning the program to its first presented frame;
 //   - glslang validation (preprocess + check) of the largest shader we ship.
