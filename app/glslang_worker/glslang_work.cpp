@@ -151,10 +151,11 @@ void build_builtins_for(const std::string& version_line) {
 
 }  // namespace
 
-GlslangReply serve(const GlslangRequest& request) {
+std::optional<GlslangReply> serve(const GlslangRequest& request, int requester) {
   SandboxLimits limits;
   limits.seconds = kValidationSeconds;
   limits.bytes = kValidationBytes;
+  limits.requester = requester;
   SandboxResult child;
   if (request.kind == GlslangRequest::Kind::Validate) {
     build_builtins_for(request.version_line);
@@ -181,6 +182,7 @@ GlslangReply serve(const GlslangRequest& request) {
     case SandboxResult::Status::TimedOut: reply.status = GlslangReply::Status::TimedOut; break;
     case SandboxResult::Status::OutOfMemory: reply.status = GlslangReply::Status::OutOfMemory; break;
     case SandboxResult::Status::Crashed: reply.status = GlslangReply::Status::Crashed; break;
+    case SandboxResult::Status::Abandoned: return std::nullopt;
   }
   return reply;
 }

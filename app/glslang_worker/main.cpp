@@ -1,6 +1,7 @@
 // raymarching-glslang: the process in which the host runs glslang. It reads
 // requests on the socket the host gave it as stdin and stdout, and answers
-// each, until the host closes the socket (or exits).
+// each, until the host closes the socket (or exits): then at once, even in
+// the middle of a shader that would take glslang seconds.
 //
 // Why a process of its own: each shader is parsed in a child made by fork(),
 // so that one which makes glslang loop, allocate without end or crash costs
@@ -19,7 +20,8 @@ int main() {
   signal(SIGPIPE, SIG_IGN);  // a host that went away ends the loop below
   glslang::InitializeProcess();
   while (const auto request = rm::read_request(0)) {
-    if (!rm::write_reply(1, rm::serve(*request))) break;
+    const auto reply = rm::serve(*request, 0);
+    if (!reply || !rm::write_reply(1, *reply)) break;
   }
   glslang::FinalizeProcess();
   return 0;

@@ -72,7 +72,8 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, const Sand
     return result;
   }
   // Read while the child writes (a full pipe would stall it), until it
-  // closes its end, its time is up or its memory is over budget.
+  // closes its end, its time is up, its memory is over budget or the
+  // requester hangs up.
   const std::string child = std::to_string(pid);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limits.seconds);
   std::optional<SandboxResult::Status> killed;
@@ -82,9 +83,14 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, const Sand
     if (left.count() <= 0) killed = SandboxResult::Status::TimedOut;
     else if (resident_bytes(child) > budget) killed = SandboxResult::Status::OutOfMemory;
     if (killed) break;
-    pollfd ready{pipe_fds[0], POLLIN, 0};
-    const int polled = poll(&ready, 1, static_cast<int>(std::min(left, kMemoryCheck).count()));
+    pollfd ready[2] = {{pipe_fds[0], POLLIN, 0}, {limits.requester, POLLRDHUP, 0}};  // poll skips an fd of -1
+    const int polled = poll(ready, 2, static_cast<int>(std::min(left, kMemoryCheck).count()));
     if (polled <= 0) continue;  // EINTR, or time to look at the clock and the memory again
+    if (ready[1].revents & (POLLRDHUP | POLLHUP | POLLERR)) {
+      killed = SandboxResult::Status::Abandoned;
+      break;
+    }
+    if (ready[0].revents == 0) continue;
     const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;

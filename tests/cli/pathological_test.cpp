@@ -3,10 +3,17 @@
 // 1 GB (30 s and 2 GB sanitized), and never crashes or hangs. A case that
 // checks clean is rendered too, so the GL driver sees it as the window would.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <thread>
+#include <vector>
 
 #include "support.h"
 
@@ -29,6 +36,26 @@ constexpr long kMaxKiB = 1l << 20;
 #endif
 
 const std::string kMain = "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n";
+
+// The children of process `pid`, those of all its threads.
+std::vector<pid_t> children_of(pid_t pid) {
+  std::vector<pid_t> pids;
+  std::error_code error;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task", error)) {
+    std::ifstream children(task.path() / "children");
+    for (pid_t child; children >> child;) pids.push_back(child);
+  }
+  return pids;
+}
+
+// Whether process `pid` has ended: gone, or a zombie that no one reaped.
+bool ended(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const size_t name_end = line.rfind(')');
+  return name_end != std::string::npos && line.compare(name_end, 4, ") Z ") == 0;
+}
 
 struct Case {
   std::string name;     // the file in the test directory, or the arguments after the command
@@ -121,6 +148,49 @@ TEST_F(Pathological, DeepNestsAndLongMacroChains) {
       {path("self_used.frag"), 1, "self_used.frag:2:"},  // Y stays Y, undeclared
       {path("sum.frag"), 1, "sum.frag:3: error: an expression nested 300"},
   });
+}
+
+// A host that dies while glslang works on a shader for seconds takes its
+// worker, and the worker's child, with it: the worker sees the socket close
+// and kills the child at once. (They used to live on until the child's 5 s
+// were up.) The shader sums 2^26 terms in an #if, which takes glslang's
+// preprocessor seconds but no memory, so only the time limit would end it.
+TEST_F(Pathological, AHostKilledDuringALongShaderLeavesNoWorkerBehind) {
+  std::string sum = "#define A0 1+1\n";
+  for (int i = 1; i <= 25; ++i)
+    sum += "#define A" + std::to_string(i) + " A" + std::to_string(i - 1) + "+A" + std::to_string(i - 1) + "\n";
+  write_file(dir_ / "bomb.frag", sum + "#if A25 > 0\n#endif\n" + kMain);
+  const pid_t host = fork();
+  if (host == 0) {
+    freopen("/dev/null", "w", stderr);
+    execl(RM_BINARY, RM_BINARY, "check", path("bomb.frag").c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ASSERT_GT(host, 0);
+  // The worker, once its child (the sandbox that runs glslang) is running.
+  pid_t worker = 0, sandbox = 0;
+  const auto start = std::chrono::steady_clock::now();
+  while (!sandbox && std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kMaxSeconds)) {
+    for (pid_t child : children_of(host)) {
+      if (const std::vector<pid_t> grandchildren = children_of(child); !grandchildren.empty()) {
+        worker = child;
+        sandbox = grandchildren[0];
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  kill(host, SIGKILL);
+  int status = 0;
+  waitpid(host, &status, 0);
+  ASSERT_NE(sandbox, 0) << "the host never ran glslang in its worker's child";
+  const auto killed = std::chrono::steady_clock::now();
+  while (!(ended(worker) && ended(sandbox)) && std::chrono::steady_clock::now() - killed < std::chrono::seconds(3))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
+  EXPECT_TRUE(ended(worker));
+  EXPECT_TRUE(ended(sandbox));
+  EXPECT_LT(seconds, 2.0);  // not the child's 5 s
+  std::printf("  the worker and its child ended %.0f ms after the host was killed\n", seconds * 1000);
 }
 
 TEST_F(Pathological, ManyIncludesOfOneFile) {
