@@ -29,6 +29,7 @@ float ShaderClock::tick(Clock::time_point now) {
   const double delta = std::chrono::duration<double>(now - last_).count();
   last_ = now;
   if (paused_) return 0.0f;
+  if (delta > 0) frame_rate_ = static_cast<float>(1.0 / delta);
   time_ += delta * speed_;
   return static_cast<float>(delta * speed_);
 }

@@ -74,11 +74,16 @@ class ShaderClock {
   void next_frame() { ++frame_; }
   double time() const { return time_; }
   int frame() const { return frame_; }
+  // Shadertoy's iFrameRate: frames per second of the wall clock (not of
+  // shader time, which runs at the clock's speed), at the last tick that ran
+  // the clock; held while paused, when ticks only redraw the same moment.
+  float frame_rate() const { return frame_rate_; }
 
  private:
   Clock::time_point last_;
   double time_ = 0.0;
   int frame_ = 0;
+  float frame_rate_ = 60.0f;
   bool paused_ = false;
   double speed_ = 1.0;
 };

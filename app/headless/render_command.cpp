@@ -189,7 +189,9 @@ int render_command(const RenderRequest& req) {
     // first frame's, whose frame before is not replayed, is one at --fps.
     const double before = n > 0 ? take_inputs_at(take, replay->wall(n - 1), req.size, uniforms).time : in.time - 1.0 / req.fps;
     in.time_delta = static_cast<float>(in.time - before);
-    in.frame_rate = in.time_delta > 0 ? 1.0f / in.time_delta : static_cast<float>(req.fps);
+    // Frames per second of the take's wall clock, as the window counts them.
+    const double wall_step = n > 0 ? replay->wall(n) - replay->wall(n - 1) : 1.0 / req.fps;
+    in.frame_rate = static_cast<float>(wall_step > 0 ? 1.0 / wall_step : req.fps);
     in.date = date_of(date + std::chrono::duration_cast<std::chrono::system_clock::duration>(
                                  std::chrono::duration<double>(replay->wall(n))));
     const auto [first_crossed, end_crossed] = replay->crossed(n);

@@ -551,7 +551,7 @@ class WindowApp {
     inputs_.resolution = glm::vec3(width, height, 1.0f);
     inputs_.time = static_cast<float>(clock_.time());
     inputs_.time_delta = clock_.paused() ? 0.0f : delta;
-    inputs_.frame_rate = delta > 0 ? 1.0f / delta : 60.0f;
+    inputs_.frame_rate = clock_.frame_rate();
     inputs_.frame = clock_.frame();
     inputs_.mouse = mouse_.imouse();
     inputs_.cursor = mouse_.cursor();

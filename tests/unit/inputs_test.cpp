@@ -71,6 +71,21 @@ TEST(Clock, RunsAtItsSpeedAndSeeks) {
   EXPECT_DOUBLE_EQ(clock.time(), 0.0);
 }
 
+TEST(Clock, FrameRateIsFramesPerWallSecondHeldWhilePaused) {
+  using namespace std::chrono_literals;
+  const auto t0 = ShaderClock::Clock::time_point{};
+  ShaderClock clock(t0);
+  clock.set_speed(2.0);
+  clock.tick(t0 + 20ms);
+  EXPECT_FLOAT_EQ(clock.frame_rate(), 50.0f);  // 50 frames a second, whatever the clock's speed
+  clock.set_paused(true);
+  clock.tick(t0 + 1020ms);  // a redraw of the paused moment, a second later
+  EXPECT_FLOAT_EQ(clock.frame_rate(), 50.0f);
+  clock.set_paused(false);
+  clock.tick(t0 + 1060ms);
+  EXPECT_FLOAT_EQ(clock.frame_rate(), 25.0f);
+}
+
 TEST(Date, IsYearMonthFromZeroDaySecondsSinceMidnight) {
   std::tm tm{};
   tm.tm_year = 2024 - 1900;
