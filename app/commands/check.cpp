@@ -10,7 +10,11 @@ namespace rm::cli {
 CheckCommand::CheckCommand(CLI::App& app)
     : command_(app.add_subcommand("check", "Preprocess and validate SCENE (with every pass it reads) with glslang; print diagnostics")) {
   command_->add_option("scene", scene_, "Shader to check")->required()->type_name("SCENE");
-  command_->add_flag("-E,--expand", expand_, "Print what the compiler sees: the source after the preprocessor");
+  CLI::Option* expand =
+      command_->add_flag("-E,--expand", expand_, "Print what the compiler sees: the source after the preprocessor");
+  command_->add_flag("-P,--no-line-markers", no_line_markers_,
+                     "With -E: no '# LINE \"FILE\"' lines, as cpp -P: text any GLSL compiler takes as it is")
+      ->needs(expand);
   source_.add_to(*command_);
 }
 
@@ -23,7 +27,7 @@ int CheckCommand::run() const {
   std::cerr << join(diags);
   if (count_errors(diags)) return kExitShaderError;
   if (expand_) {
-    auto text = expand_preprocessor(source, &diags);
+    auto text = expand_preprocessor(source, &diags, no_line_markers_ ? LineMarkers::Off : LineMarkers::On);
     std::cerr << join(diags);
     if (!text) return kExitShaderError;
     std::cout << *text;

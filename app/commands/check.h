@@ -1,5 +1,6 @@
-// `raymarching check SCENE [-E]`: preprocess and validate with glslang, print
-// diagnostics; -E prints what the compiler sees. Needs no GL, EGL or GLFW.
+// `raymarching check SCENE [-E [-P]]`: preprocess and validate with glslang,
+// print diagnostics; -E prints what the compiler sees (-P: without line
+// markers, as cpp -P). Needs no GL, EGL or GLFW.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <string>
@@ -18,6 +19,7 @@ class CheckCommand {
   CLI::App* command_;
   std::string scene_;
   bool expand_ = false;
+  bool no_line_markers_ = false;
   SourceFlags source_;
 };
 

@@ -189,7 +189,8 @@ namespace {
 // marked as cpp marks its output: a `# LINE "FILE"` line wherever the next
 // line does not follow the previous one, and no blank lines (a gap of a few
 // lines in one file is kept as blank lines instead of a marker, as cpp does).
-std::string with_line_markers(const std::string& expanded, const Source& source) {
+// With LineMarkers::Off, the same lines with no markers and no blank lines.
+std::string with_line_markers(const std::string& expanded, const Source& source, LineMarkers markers) {
   std::vector<std::string_view> lines;
   for (size_t at = 0; at < expanded.size();) {
     size_t end = expanded.find('\n', at);
@@ -205,7 +206,7 @@ std::string with_line_markers(const std::string& expanded, const Source& source)
     if (lines[i].find_first_not_of(" \t\r") == std::string_view::npos) continue;
     auto [path, line] = source.locate(static_cast<int>(i) + 1);
     if (path.empty()) path = "<raymarching>", line = 0;  // a line the host adds
-    if (i == 0) {  // #version stays first
+    if (i == 0 || markers == LineMarkers::Off) {  // #version stays first
     } else if (path != file || (line != 0 && line != next)) {
       if (path == file && line > next && line - next <= kMaxBlankGap) {
         out.append(static_cast<size_t>(line - next), '\n');
@@ -223,7 +224,7 @@ std::string with_line_markers(const std::string& expanded, const Source& source)
 
 }  // namespace
 
-std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags) {
+std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags, LineMarkers markers) {
   GlslangRequest request;
   request.kind = GlslangRequest::Kind::Preprocess;
   request.text = source.text;
@@ -236,7 +237,7 @@ std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics
     *diags = map_log(child.output.substr(std::min<size_t>(1, child.output.size())), source, LogFormat::Glslang);
     return std::nullopt;
   }
-  return with_line_markers(child.output.substr(1), source);
+  return with_line_markers(child.output.substr(1), source, markers);
 }
 
 std::optional<std::string> active_code(const std::string& text) {

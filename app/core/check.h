@@ -27,8 +27,14 @@ Diagnostics validate(const Source& source, std::string* active = nullptr, const 
 
 // What the compiler sees: source.text after glslang's own preprocessor, with
 // macros expanded and the #if branches not taken removed (a compiler's -E).
-// nullopt, with *diags, if the preprocessor fails.
-std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags);
+// With LineMarkers::On, lines are placed as cpp places them: a `# LINE
+// "FILE"` line where the next line does not follow the one before, blank
+// lines for a short gap. Off (cpp -P): the lines alone, which a GLSL
+// compiler takes as they are. nullopt, with *diags, if the preprocessor
+// fails.
+enum class LineMarkers { On, Off };
+std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags,
+                                               LineMarkers markers = LineMarkers::On);
 
 // `text` after glslang's preprocessor, within the validation limits: the code
 // the compiler would see. nullopt if the preprocessor fails.

@@ -180,6 +180,29 @@ TEST_F(Cli, CheckExpandMarksFilesAndLinesAndDropsBlankRuns) {
   EXPECT_EQ(text.find("\n\n"), std::string::npos) << "no blank lines\n" << text;
 }
 
+// -P, as cpp -P: the same lines with no markers, which glslangValidator
+// takes as they are; -P without -E is a usage error.
+TEST_F(Cli, CheckExpandWithoutLineMarkersIsTextGlslangValidatorTakes) {
+  write_file(dir_ / "lib.glsl", "float f() { return 1.0; }\n\n\n\n\n\n\n\n\n\n\n\nfloat g() { return 2.0; }\n");
+  write_file(dir_ / "s.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 p) { c = vec4(f() + g()); }\n");
+  const std::string out = (dir_ / "expanded.frag").string();
+  const std::string cmd = std::string(RM_BINARY) + " check -E -P " + (dir_ / "s.frag").string() + " > " + out;
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string text = test::read_file(out);
+  EXPECT_EQ(text.rfind("#version 450 core\n", 0), 0u) << text;
+  const size_t f = text.find("float f()");
+  ASSERT_NE(f, std::string::npos) << text;
+  EXPECT_EQ(text.compare(text.find('\n', f) + 1, 9, "float g()"), 0) << "g follows f, with no gap\n" << text;
+  EXPECT_EQ(text.find("\n# "), std::string::npos) << "no line markers\n" << text;
+  EXPECT_EQ(text.find("\n\n"), std::string::npos) << "no blank lines\n" << text;
+  const std::string validator = "glslangValidator -S frag " + out + " > /dev/null";
+  EXPECT_EQ(std::system(validator.c_str()), 0) << text;
+
+  const test::Outcome r = run("check -P " + (dir_ / "s.frag").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--no-line-markers requires --expand"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, CheckExpandPrintsThePreprocessedSource) {
   write_file(dir_ / "e.frag", "#ifdef FANCY\nfloat fancy_marker;\n#endif\n"
                               "void mainImage(out vec4 c, in vec2 f) { c = vec4(LEVEL); }\n");
