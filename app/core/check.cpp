@@ -206,7 +206,7 @@ std::string with_line_markers(const std::string& expanded, const Source& source,
     if (lines[i].find_first_not_of(" \t\r") == std::string_view::npos) continue;
     auto [path, line] = source.locate(static_cast<int>(i) + 1);
     if (path.empty()) path = "<raymarching>", line = 0;  // a line the host adds
-    if (i == 0 || markers == LineMarkers::Off) {  // #version stays first
+    if (i == 0 || markers == LineMarkers::Off) {  // #version stays first; -P wants the lines alone
     } else if (path != file || (line != 0 && line != next)) {
       if (path == file && line > next && line - next <= kMaxBlankGap) {
         out.append(static_cast<size_t>(line - next), '\n');
