@@ -20,6 +20,17 @@ namespace rm::test {
 
 namespace fs = std::filesystem;
 
+// The children of process `pid`, those of all its threads (from /proc).
+inline std::vector<pid_t> children_of(pid_t pid) {
+  std::vector<pid_t> pids;
+  std::error_code error;
+  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task", error)) {
+    std::ifstream children(task.path() / "children");
+    for (pid_t child; children >> child;) pids.push_back(child);
+  }
+  return pids;
+}
+
 // A fresh directory, removed with everything in it at scope exit.
 class TempDir {
  public:

@@ -20,6 +20,7 @@
 namespace rm {
 namespace {
 
+using test::children_of;
 using test::TempDir;
 using test::write_file;
 
@@ -36,17 +37,6 @@ constexpr long kMaxKiB = 1l << 20;
 #endif
 
 const std::string kMain = "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n";
-
-// The children of process `pid`, those of all its threads.
-std::vector<pid_t> children_of(pid_t pid) {
-  std::vector<pid_t> pids;
-  std::error_code error;
-  for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task", error)) {
-    std::ifstream children(task.path() / "children");
-    for (pid_t child; children >> child;) pids.push_back(child);
-  }
-  return pids;
-}
 
 // Whether process `pid` has ended: gone, or a zombie that no one reaped.
 bool ended(pid_t pid) {

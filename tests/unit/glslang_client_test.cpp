@@ -7,18 +7,18 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include <atomic>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "support.h"
+
 namespace rm {
 namespace {
-
-namespace fs = std::filesystem;
 
 GlslangRequest undeclared_name() {
   GlslangRequest request;
@@ -36,13 +36,10 @@ bool names_the_undeclared_name(const GlslangReply& reply) {
 // kernel keeps it is cut to 15 characters).
 std::vector<pid_t> worker_pids() {
   std::vector<pid_t> pids;
-  for (const auto& task : fs::directory_iterator("/proc/self/task")) {
-    std::ifstream children(task.path() / "children");
-    for (pid_t pid; children >> pid;) {
-      std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
-      std::string name;
-      if (std::getline(comm, name) && name.rfind("raymarching-gls", 0) == 0) pids.push_back(pid);
-    }
+  for (pid_t pid : test::children_of(getpid())) {
+    std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+    std::string name;
+    if (std::getline(comm, name) && name.rfind("raymarching-gls", 0) == 0) pids.push_back(pid);
   }
   return pids;
 }
