@@ -41,14 +41,14 @@ def split_page(text):
     starts = [m.start() for m in re.finditer(r"(?m)^#+ ", text)]
     found = {}
     for i, start in enumerate(starts):
-        end = starts[i + 1] if i + 1 < len(starts) else len(text)
-        chunk = text[start:end]
+        last_one = i + 1 == len(starts)
+        chunk = text[start:] if last_one else text[start:starts[i + 1] - 1]  # less the blank line between
         title = chunk.split("\n", 1)[0]
         if title in by_heading:
-            found[by_heading[title]] = chunk[:-1] if i + 1 < len(starts) else chunk
+            found[by_heading[title]] = chunk
         elif found:  # a heading of the template's own (none has one today) or a stray one
             last = list(found)[-1]
-            found[last] += "\n" + (chunk[:-1] if i + 1 < len(starts) else chunk)
+            found[last] += "\n" + chunk
     return found
 
 
