@@ -547,10 +547,9 @@ class WindowApp {
 
   // The inputs of the next frame, at the window's size: the clock ticks.
   void take_inputs(int width, int height) {
-    const float delta = clock_.tick();
+    inputs_.time_delta = clock_.tick();  // 0 while paused
     inputs_.resolution = glm::vec3(width, height, 1.0f);
     inputs_.time = static_cast<float>(clock_.time());
-    inputs_.time_delta = clock_.paused() ? 0.0f : delta;
     inputs_.frame_rate = clock_.frame_rate();
     inputs_.frame = clock_.frame();
     inputs_.mouse = mouse_.imouse();
