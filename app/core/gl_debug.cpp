@@ -18,6 +18,10 @@ void report_gl_errors() {
   // Only errors: performance and portability notes would drown them.
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_FALSE);
   glDebugMessageControl(GL_DONT_CARE, GL_DEBUG_TYPE_ERROR, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+  // A shader's compile errors come back from Program::build with their file
+  // and line (and a twin the driver rejects is only not there): the driver's
+  // raw copy would repeat them.
+  glDebugMessageControl(GL_DEBUG_SOURCE_SHADER_COMPILER, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_FALSE);
   glDebugMessageCallback(
       [](GLenum, GLenum, GLuint, GLenum, GLsizei, const GLchar* message, const void*) {
         ++errors;
