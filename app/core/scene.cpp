@@ -75,7 +75,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
     return ReloadStatus::Swapped;
   }
   if (twin_ && source.text != good_source_.text) {
-    LiftedLiterals lifted = lift_literals(source, options_.shaderlib_dir);
+    LiftedLiterals lifted = lift_literals(source, options_.shaderlib_dir, twin_->scope);
     // The same tokens: comments and blanks may differ (a comment-only save
     // left the twin's text behind).
     if (lifted.ok && lexing::code_only(lifted.skeleton) == lexing::code_only(twin_->skeleton)) {
@@ -159,20 +159,27 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
   };
   twin_checked_ = generation_;
   if (!program_ || showing_twin_) return false;
-  LiftedLiterals lifted = lift_literals(good_source_, options_.shaderlib_dir);
-  if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed_twin_) return false;
-  if (twin_ && twin_->skeleton == lifted.skeleton) return false;
-  if (cancelled && cancelled()) return give_up();
-  Diagnostics ignored;  // the exact program built: a twin the driver rejects is only not there
-  std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &ignored);
-  if (!built) {
-    failed_twin_ = std::move(lifted.skeleton);
-    return false;
+  // The twin that lifts the constants too, unless the driver rejects it (a
+  // constant some other constant needs): then the one of the function bodies.
+  for (const LiftScope scope : {LiftScope::WithConstants, LiftScope::FunctionBodies}) {
+    LiftedLiterals lifted = lift_literals(good_source_, options_.shaderlib_dir, scope);
+    if (scope == LiftScope::WithConstants && lifted.constants == 0) continue;  // the same as the other
+    std::string& failed = failed_twins_[static_cast<int>(scope)];
+    if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed) continue;
+    if (twin_ && twin_->scope == scope && twin_->skeleton == lifted.skeleton) return false;
+    if (cancelled && cancelled()) return give_up();
+    Diagnostics ignored;  // the exact program built: a twin the driver rejects is only not there
+    std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &ignored);
+    if (!built) {
+      failed = std::move(lifted.skeleton);
+      continue;
+    }
+    if (cancelled && cancelled()) return give_up();
+    if (on_built) on_built(path_, *built);
+    pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built)};
+    return true;
   }
-  if (cancelled && cancelled()) return give_up();
-  if (on_built) on_built(path_, *built);
-  pending_twin_ = Twin{std::move(lifted.skeleton), std::move(*built)};
-  return true;
+  return false;
 }
 
 void Scene::commit_twin() {

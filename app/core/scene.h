@@ -8,6 +8,7 @@
 #include "core/diagnostics.h"
 #include "core/program.h"
 #include "core/source.h"
+#include "core/tweak.h"
 
 namespace rm {
 
@@ -120,6 +121,7 @@ class Scene {
   std::vector<Built> cache_;
   std::optional<Built> pending_;  // prepared, not yet committed
   struct Twin {
+    LiftScope scope;
     std::string skeleton;  // of the texts it can show (LiftedLiterals)
     Program program;
   };
@@ -131,7 +133,7 @@ class Scene {
   std::optional<Tweak> pending_tweak_;
   bool showing_twin_ = false;
   int twin_checked_ = -1;      // the generation prepare_twin() last looked at
-  std::string failed_twin_;    // the skeleton whose twin the driver rejected
+  std::string failed_twins_[2];  // by LiftScope, the skeleton whose twin the driver rejected
   Diagnostics pending_diagnostics_;
   void cache(Built built);
 };

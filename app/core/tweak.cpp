@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
+#include <string_view>
 
 #include "core/lexing.h"
 
@@ -43,10 +45,51 @@ size_t number_end(std::string_view code, size_t at) {
   return i;
 }
 
+// Whether `word` names a float type: float, vecN, matN or matNxM.
+bool is_float_type(std::string_view w) {
+  const auto size = [](char c) { return c >= '2' && c <= '4'; };
+  if (w == "float") return true;
+  if (w.size() == 4 && (w.substr(0, 3) == "vec" || w.substr(0, 3) == "mat")) return size(w[3]);
+  return w.size() == 6 && w.substr(0, 3) == "mat" && size(w[3]) && w[4] == 'x' && size(w[5]);
+}
+
+size_t word_end(std::string_view code, size_t at) {
+  while (at < code.size() && lexing::is_word_char(code[at])) ++at;
+  return at;
+}
+
+// Where the type ends, if the words from `at` on begin a declaration of
+// variables of a float type: [const] [precision] TYPE[[n]] NAME, where NAME
+// is not followed by '(' (a function's). It reads a few words, and an array
+// size of at most 64 characters: a text of many `const`s stays linear.
+std::optional<size_t> float_declaration(std::string_view code, size_t at) {
+  size_t type_end = 0;
+  for (int words = 0; type_end == 0; ++words) {
+    if (words == 4 || at >= code.size() || !lexing::is_word_start(code[at])) return std::nullopt;
+    const size_t end = word_end(code, at);
+    const std::string_view word = code.substr(at, end - at);
+    at = lexing::skip_space(code, end);
+    if (word == "const" || word == "highp" || word == "mediump" || word == "lowp" || word == "precise") continue;
+    if (!is_float_type(word)) return std::nullopt;
+    type_end = end;
+  }
+  if (at < code.size() && code[at] == '[') {  // float[3] name
+    at = code.substr(0, std::min(code.size(), at + 64)).find(']', at);
+    if (at == std::string_view::npos) return std::nullopt;
+    at = lexing::skip_space(code, at + 1);
+  }
+  if (at >= code.size() || !lexing::is_word_start(code[at])) return std::nullopt;
+  at = lexing::skip_space(code, word_end(code, at));
+  if (at < code.size() && code[at] == '(') return std::nullopt;
+  return type_end;
+}
+
 }  // namespace
 
-LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir) {
+LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir, LiftScope scope) {
   LiftedLiterals out;
+  out.scope = scope;
+  const bool wide = scope == LiftScope::WithConstants;
   const std::string code = lexing::strip_comments(source.text);
   if (code.find(kMark) != std::string::npos) {
     out.ok = false;
@@ -59,12 +102,30 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     const int file = source.line_map[line].file;
     return file >= 0 && static_cast<size_t>(file) < user_file.size() && user_file[static_cast<size_t>(file)];
   };
+  // Replaces a float literal by the mark; `constant`: one FunctionBodies leaves.
+  auto lift = [&](const std::string& token, bool constant) {
+    const float value = std::strtof(token.c_str(), nullptr);
+    if (!std::isfinite(value) || out.values.size() == kMaxTweaks) out.ok = false;
+    out.values.push_back(value);
+    out.constants += constant ? 1 : 0;
+    out.skeleton += kMark;
+  };
 
   out.skeleton.reserve(code.size());
   size_t line = 0;
   bool line_start = true;
   int braces = 0, parens = 0;
   bool in_function = false, in_const = false;
+  // WithConstants: a local float const; a global float declaration (its type
+  // ends at global_type_end, the next word may name a declarator, and an
+  // initialiser may be open since init_from); file scope between statements.
+  bool in_local_const = false, in_global = false, want_name = false, in_init = false, statement_start = true;
+  size_t global_type_end = 0, init_from = 0;
+  std::string_view target;
+  auto close_initialiser = [&] {
+    if (in_init) out.moved.push_back({init_from, out.skeleton.size(), std::string(target)});
+    in_init = false;
+  };
   char last = 0;  // the last character that was not blank
   std::string_view word, callee;  // the last word; the one before a '(' at file scope
   for (size_t i = 0; i < code.size();) {
@@ -79,6 +140,7 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
       line_start = false;
       const size_t first = lexing::skip_blanks(code, i);
       if (first < code.size() && code[first] == '#') {  // a directive, with its continuation lines
+        const size_t first_line = line;
         size_t end = i;
         while (true) {
           end = code.find('\n', end);
@@ -89,16 +151,54 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
           if (code[end - 1] != '\\') break;
           ++line, ++end;  // a continuation line
         }
-        out.skeleton.append(code, i, end - i);
+        const std::string_view text = std::string_view(code).substr(i, end - i);
+        const std::optional<lexing::Directive> d = lexing::directive(text);
+        if (wide && d && d->name == "define" && user_line(first_line)) {  // its value's literals
+          out.skeleton.append(text.substr(0, d->rest_at));
+          for (size_t k = d->rest_at; k < text.size();) {
+            if (lexing::is_word_start(text[k])) {
+              const size_t e = word_end(text, k);
+              out.skeleton.append(text.substr(k, e - k));
+              k = e;
+            } else if (lexing::is_digit(text[k]) || (text[k] == '.' && k + 1 < text.size() && lexing::is_digit(text[k + 1]))) {
+              const size_t e = number_end(text, k);
+              const std::string token(text.substr(k, e - k));
+              if (is_float_literal(token)) lift(token, true);
+              else out.skeleton += token;
+              k = e;
+            } else {
+              out.skeleton += text[k++];
+            }
+          }
+        } else {
+          out.skeleton.append(text);
+        }
         i = end;
         continue;
       }
     }
     if (lexing::is_word_start(c)) {
-      size_t end = i;
-      while (end < code.size() && lexing::is_word_char(code[end])) ++end;
+      const size_t end = word_end(code, i);
       word = std::string_view(code).substr(i, end - i);
-      if (parens == 0 && word == "const") in_const = true;
+      if (wide && statement_start && braces == 0 && parens == 0 && user_line(line)) {
+        if (const std::optional<size_t> type_end = float_declaration(code, i)) {
+          in_global = true;
+          global_type_end = *type_end;
+        }
+      }
+      statement_start = false;
+      if (parens == 0 && word == "const") {
+        if (in_global) {
+          out.dropped_consts.push_back(out.skeleton.size());
+        } else if (wide && in_function && user_line(line) && float_declaration(code, i)) {
+          out.dropped_consts.push_back(out.skeleton.size());
+          in_local_const = true;
+        } else {
+          in_const = true;
+        }
+      }
+      if (in_global && want_name) target = word, want_name = false;
+      if (in_global && end == global_type_end) want_name = true;
       out.skeleton.append(code, i, end - i);
       i = end;
       last = 'a';
@@ -107,14 +207,10 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     if (lexing::is_digit(c) || (c == '.' && i + 1 < code.size() && lexing::is_digit(code[i + 1]))) {
       const size_t end = number_end(code, i);
       const std::string token = code.substr(i, end - i);
-      if (in_function && !in_const && user_line(line) && is_float_literal(token)) {
-        const float value = std::strtof(token.c_str(), nullptr);
-        if (!std::isfinite(value) || out.values.size() == kMaxTweaks) out.ok = false;
-        out.values.push_back(value);
-        out.skeleton += kMark;
-      } else {
-        out.skeleton += token;
-      }
+      const bool in_body = in_function && !in_const;
+      if ((in_body || in_init) && user_line(line) && is_float_literal(token)) lift(token, in_init || in_local_const);
+      else out.skeleton += token;
+      statement_start = false;
       i = end;
       last = '0';
       continue;
@@ -132,11 +228,21 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
         if (--braces <= 0) braces = 0, in_function = false;
         break;
       case ';':
-        if (parens == 0) in_const = false;
+        if (parens == 0) in_const = in_local_const = false;
+        if (in_global && parens == 0 && braces == 0) close_initialiser(), in_global = false;
+        break;
+      case ',':
+        if (in_global && parens == 0 && braces == 0) close_initialiser(), want_name = true;
+        break;
+      case '=':
+        if (in_global && parens == 0 && braces == 0 && !in_init) in_init = true, init_from = out.skeleton.size();
         break;
       default: break;
     }
-    if (!lexing::is_blank(c)) last = c;
+    if (!lexing::is_blank(c)) {
+      last = c;
+      statement_start = braces == 0 && parens == 0 && (c == ';' || (c == '}' && !in_global));
+    }
     out.skeleton += c;
     ++i;
   }
@@ -145,28 +251,60 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
 }
 
 Source twin_source(const Source& source, const LiftedLiterals& lifted) {
+  const std::string& skeleton = lifted.skeleton;
   const size_t count = lifted.values.size();
   auto global = [](size_t i) { return std::string(kTweakUniform) + "_" + std::to_string(i); };
   std::string set;  // what main() does first
   for (size_t i = 0; i < count; ++i) set += " " + global(i) + " = " + kTweakUniform + "[" + std::to_string(i) + "];";
+  // Then each moved initialiser, in order, on main()'s first line, its marks
+  // numbered as where they stand.
+  size_t index = 0, at = 0;
+  for (const LiftedLiterals::MovedInitialiser& m : lifted.moved) {
+    index += static_cast<size_t>(std::count(skeleton.begin() + static_cast<std::ptrdiff_t>(at),
+                                            skeleton.begin() + static_cast<std::ptrdiff_t>(m.from), kMark));
+    at = m.from;
+    set += " " + m.target + " ";
+    for (size_t k = m.from; k < m.to; ++k) {
+      const char c = skeleton[k];
+      set += c == kMark ? global(index++) : c == '\n' ? std::string(" ") : std::string(1, c);
+    }
+    at = m.to;
+    set += ";";
+  }
   Source twin = source;
   twin.text.clear();
-  twin.text.reserve(lifted.skeleton.size() + count * 40 * (1 + lifted.main_bodies.size()));
-  size_t index = 0;
+  twin.text.reserve(skeleton.size() + count * 40 * (1 + lifted.main_bodies.size()) + set.size());
+  index = 0;
   auto body = lifted.main_bodies.begin();
-  for (size_t at = 0; at < lifted.skeleton.size(); ++at) {
+  auto dropped = lifted.dropped_consts.begin();
+  auto moved = lifted.moved.begin();
+  for (at = 0; at < skeleton.size(); ++at) {
     if (body != lifted.main_bodies.end() && *body == at) {
       twin.text += set;
       ++body;
     }
-    const char c = lifted.skeleton[at];
+    if (dropped != lifted.dropped_consts.end() && *dropped == at) {  // "const"
+      at += std::string_view("const").size() - 1;
+      ++dropped;
+      continue;
+    }
+    if (moved != lifted.moved.end() && moved->from == at) {  // main() sets it: only its lines stay
+      for (; at < moved->to; ++at) {
+        if (skeleton[at] == '\n') twin.text += '\n';
+        if (skeleton[at] == kMark) ++index;
+      }
+      --at;
+      ++moved;
+      continue;
+    }
+    const char c = skeleton[at];
     if (c == kMark) twin.text += global(index++);
     else twin.text += c;
   }
   // The declaration goes before the first line of the user's files.
   size_t first = 1;  // after the #version line, which may be the user's own
   while (first < twin.line_map.size() && twin.line_map[first].file < 0) ++first;
-  size_t at = 0;
+  at = 0;
   for (size_t l = 0; l < first && at != std::string::npos; ++l) {
     at = twin.text.find('\n', at);
     if (at != std::string::npos) ++at;

@@ -85,13 +85,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (lines != source.line_map.size()) std::abort();
     for (const rm::Origin& o : source.line_map)
       if (o.file >= static_cast<int>(source.files.size())) std::abort();
-    const rm::LiftedLiterals lifted = rm::lift_literals(source, options.shaderlib_dir);
-    if (lifted.ok) {
+    for (const rm::LiftScope scope : {rm::LiftScope::FunctionBodies, rm::LiftScope::WithConstants}) {
+      const rm::LiftedLiterals lifted = rm::lift_literals(source, options.shaderlib_dir, scope);
+      if (!lifted.ok) continue;
+      const std::string& skeleton = lifted.skeleton;
       size_t skeleton_lines = 0, marks = 0;
-      for (char c : lifted.skeleton) skeleton_lines += c == '\n', marks += c == '\x01';
+      for (char c : skeleton) skeleton_lines += c == '\n', marks += c == '\x01';
       if (skeleton_lines != lines || marks != lifted.values.size() || marks > rm::kMaxTweaks) std::abort();
+      if (lifted.constants > marks) std::abort();
       for (size_t at : lifted.main_bodies)
-        if (at == 0 || at > lifted.skeleton.size() || lifted.skeleton[at - 1] != '{') std::abort();
+        if (at == 0 || at > skeleton.size() || skeleton[at - 1] != '{') std::abort();
+      // Each dropped const is the word; moved initialisers begin at '=', in order, apart.
+      for (size_t at : lifted.dropped_consts)
+        if (skeleton.compare(at, 5, "const") != 0) std::abort();
+      size_t after = 0;
+      for (const auto& m : lifted.moved) {
+        if (m.from < after || m.to < m.from || m.to > skeleton.size() || skeleton[m.from] != '=') std::abort();
+        after = m.to;
+      }
       const rm::Source twin = rm::twin_source(source, lifted);
       size_t twin_lines = 0;
       for (char c : twin.text) twin_lines += c == '\n';

@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "core/data_paths.h"
+#include "core/lexing.h"
 #include "core/renderer.h"
 #include "core/scene.h"
 #include "egl_fixture.h"
@@ -97,9 +98,9 @@ TEST_F(TweakGpu, ANumberEditShowsAtOnceInTheTwinAndThenInTheExactProgram) {
   EXPECT_EQ(max_difference(render(scene, {16, 8}), twin), 0.0f);
   EXPECT_EQ(scene.reload(), ReloadStatus::Unchanged);
 
-  // A code edit compiles; so does a const's number. The twin stays for the
-  // next number edit of a text of its skeleton.
-  for (const std::string& code : {with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"), with(kScene, "= 0.5", "= 0.75")}) {
+  // A code edit compiles; so does a float become an int. The twin stays for
+  // the next number edit of a text of its skeleton.
+  for (const std::string& code : {with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"), with(kScene, "= 0.5", "= 1")}) {
     write_file(path, code);
     ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
     EXPECT_GT(scene.times().driver, 0.0);
@@ -202,6 +203,52 @@ TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak
   EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.5f, 1e-6f);
 }
 
+// A number of a constant, a global or a #define is a tweak too; where the
+// driver rejects that twin (an int constant needs a float one), the twin of
+// the function bodies stands in, and such a number is a code edit again.
+TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
+  const std::string constants = "#define kGreen 0.5\n" + with(kScene, "0.125", "kBlue") + "";
+  const std::string scene = with(constants, "const float kSize = 0.5;", "const float kSize = 0.5;\nfloat kBlue = 0.125;");
+  const auto path = dir_ / "scene.frag";
+  write_file(path, with(scene, "step(kSize, uv.y) * 0.5", "step(kSize, uv.y) * kGreen"));
+  Scene wide(path, {});
+  ASSERT_EQ(wide.reload(), ReloadStatus::Swapped) << join(wide.diagnostics());
+  ASSERT_TRUE(wide.prepare_twin());
+  wide.commit_twin();
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"kSize = 0.5", "kSize = 0.25"}, {"kBlue = 0.125", "kBlue = 0.75"}, {"kGreen 0.5", "kGreen 0.375"}}) {
+    const std::string tweaked = with(test::read_file(path), from, to);
+    write_file(path, tweaked);
+    ASSERT_EQ(wide.prepare(), ReloadStatus::Swapped) << from;
+    EXPECT_EQ(wide.times().driver, 0.0) << from << ": no compile";
+    wide.commit();
+    ASSERT_TRUE(wide.tweaked()) << from;
+    TempDir other;
+    write_file(other / "scene.frag", tweaked);
+    Scene exact(other / "scene.frag", {});
+    ASSERT_EQ(exact.reload(), ReloadStatus::Swapped);
+    EXPECT_EQ(max_difference(render(wide, {16, 8}), render(exact, {16, 8})), 0.0f) << from;
+  }
+  EXPECT_NEAR(render(wide, {16, 8}).pixel(0, 0)[1], 0.375f, 1e-6f);
+  EXPECT_NEAR(render(wide, {16, 8}).pixel(0, 0)[2], 0.75f, 1e-6f);
+
+  // An int constant made from kSize: that twin does not compile.
+  const auto needed = dir_ / "needed.frag";
+  write_file(needed, with(scene, "float kBlue", "const int kCount = int(kSize * 4.0);\nfloat kBlue"));
+  Scene narrow(needed, {});
+  ASSERT_EQ(narrow.reload(), ReloadStatus::Swapped) << join(narrow.diagnostics());
+  ASSERT_TRUE(narrow.prepare_twin());
+  narrow.commit_twin();
+  write_file(needed, with(test::read_file(needed), "uv.x * 0.25", "uv.x * 0.5"));
+  ASSERT_EQ(narrow.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(narrow.times().driver, 0.0) << "a function body's number is still a tweak";
+  narrow.commit();
+  EXPECT_TRUE(narrow.tweaked());
+  write_file(needed, with(test::read_file(needed), "kSize = 0.5", "kSize = 0.25"));
+  ASSERT_EQ(narrow.prepare(), ReloadStatus::Swapped);
+  EXPECT_GT(narrow.times().driver, 0.0) << "the constant's number compiles";
+}
+
 // Every example's twin draws the exact program's picture: the literals it
 // reads from rm_Tweak are the ones a constant may not need. (The edit
 // appends a 0 to the scene's last decimal number: new text, the same value.)
@@ -236,6 +283,34 @@ TEST_P(ExampleTwin, DrawsTheExactPicture) {
   ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
   scene.commit();
   ASSERT_TRUE(scene.tweaked()) << last.str(0) << " is not lifted";
+  EXPECT_LT(max_difference(render(scene, {64, 36}), exact), 1e-3f);
+}
+
+// ... and with every decimal number of its code edited at once (a 0 appended:
+// new text, the same values), #defines and constants included: all are
+// lifted, and the twin still draws the exact picture.
+TEST_P(ExampleTwin, EveryDecimalNumberIsATweak) {
+  const fs::path original = fs::path(RM_SOURCE_DIR) / "examples" / GetParam();
+  const std::string edited =
+      std::regex_replace(lexing::strip_comments(test::read_file(original)), std::regex(R"(\b(\d+\.\d+)\b)"), "$&0");
+  bool edit = false;
+  FileSystem files = disk_file_system();
+  files.read = [&, disk = files.read](const fs::path& p, std::string* error) -> std::optional<std::string> {
+    if (edit && p == original) return edited;
+    return disk(p, error);
+  };
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  Scene scene(original, options, files);
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
+  const Image exact = render(scene, {64, 36});
+  ASSERT_TRUE(scene.prepare_twin()) << "the driver rejected both twins, or nothing was lifted";
+  scene.commit_twin();
+  edit = true;
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().driver, 0.0) << "a compile: a number was not lifted";
+  scene.commit();
+  ASSERT_TRUE(scene.tweaked());
   EXPECT_LT(max_difference(render(scene, {64, 36}), exact), 1e-3f);
 }
 

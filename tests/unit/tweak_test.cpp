@@ -30,7 +30,9 @@ Source source_of(const std::string& scene, const std::string& library = "float l
   return s;
 }
 
-LiftedLiterals lift(const std::string& scene) { return lift_literals(source_of(scene), "/lib"); }
+LiftedLiterals lift(const std::string& scene, LiftScope scope = LiftScope::FunctionBodies) {
+  return lift_literals(source_of(scene), "/lib", scope);
+}
 
 constexpr char kScene[] = R"(#define GAIN 2.5
 const float kScale = 1.5;
@@ -100,6 +102,64 @@ TEST(Tweak, ANumberEditKeepsTheSkeletonAndACodeEditChangesIt) {
   std::string commented = kScene;
   commented.replace(commented.find("9.0"), 3, "12.0");
   EXPECT_EQ(lift(commented).skeleton, before.skeleton);
+}
+
+// With the constants: a #define's value, a global float const and a global
+// float's initialiser, a local float const; still not the ints, the hex, the
+// comment nor the library.
+TEST(Tweak, WithConstantsTheFloatConstantsGlobalsAndDefinesAreLiftedToo) {
+  const LiftedLiterals lifted = lift(kScene, LiftScope::WithConstants);
+  ASSERT_TRUE(lifted.ok);
+  EXPECT_EQ(lifted.values,
+            (std::vector<float>{2.5f, 1.5f, 0.5f, 3.0f, 0.25f, 1e-2f, 0.5f, 4.0f, 10.0f, 7.0f, 1.0f}));
+  EXPECT_EQ(lifted.constants, 4u);
+  EXPECT_NE(lifted.skeleton.find("return 0.75"), std::string::npos);
+
+  // Each of those edits keeps the skeleton that way, and only that way.
+  const LiftedLiterals before = lift(kScene, LiftScope::WithConstants);
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"kScale = 1.5", "kScale = 1.25"}, {"k = 3.0", "k = 3.5"}, {"GAIN 2.5", "GAIN 2.0"}, {"glow = 0.5", "glow = 0.1"}}) {
+    std::string code = kScene;
+    code.replace(code.find(from), from.size(), to);
+    EXPECT_EQ(lift(code, LiftScope::WithConstants).skeleton, before.skeleton) << from << " -> " << to;
+    EXPECT_NE(lift(code).skeleton, lift(kScene).skeleton) << from << " -> " << to;
+  }
+  // An int stays an int; a float become an int is a code edit.
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"float(2)", "float(3)"},
+                                                                                   {"kScale = 1.5", "kScale = 1"}}) {
+    std::string code = kScene;
+    code.replace(code.find(from), from.size(), to);
+    EXPECT_NE(lift(code, LiftScope::WithConstants).skeleton, before.skeleton) << from << " -> " << to;
+  }
+  // Nothing but what the function bodies hold: no constants, the same skeleton.
+  const std::string bodies_only = "int n = 3;\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(0.5); }\n";
+  EXPECT_EQ(lift(bodies_only, LiftScope::WithConstants).constants, 0u);
+  EXPECT_EQ(lift(bodies_only, LiftScope::WithConstants).skeleton, lift(bodies_only).skeleton);
+}
+
+// The twin makes them variables: a local const loses `const`; a global's
+// initialiser moves into main(), after rm_Tweak is read, and its lines stay.
+TEST(Tweak, TheTwinSetsTheGlobalsInMainAndDropsTheLocalConst) {
+  const Source source = source_of(kScene);
+  const Source twin = twin_source(source, lift_literals(source, "/lib", LiftScope::WithConstants));
+  EXPECT_NE(twin.text.find("#define GAIN rm_Tweak_0\n float kScale ;\nfloat glow ;\n"), std::string::npos) << twin.text;
+  EXPECT_NE(twin.text.find("  float k = rm_Tweak_3;"), std::string::npos);
+  EXPECT_NE(twin.text.find("rm_Tweak_10 = rm_Tweak[10]; kScale = rm_Tweak_1; glow = rm_Tweak_2;"), std::string::npos);
+  EXPECT_EQ(std::count(twin.text.begin(), twin.text.end(), '\n'), std::count(source.text.begin(), source.text.end(), '\n') + 1);
+
+  // Declarators in a list, arrays, an initialiser over two lines; an int
+  // const, a function, a uniform and the library are left alone.
+  const std::string scene = "const int kN = 2;\nconst float a = 1.5, b[2] = float[](2.5,\n  a);\n"
+                            "uniform float u;\nvec2 half(vec2 p) { return p * 0.5; }\n"
+                            "void mainImage(out vec4 c, in vec2 f) { c = vec4(a, b[1], u, 1.0); }\n";
+  const Source s = source_of(scene);
+  const LiftedLiterals lifted = lift_literals(s, "/lib", LiftScope::WithConstants);
+  EXPECT_EQ(lifted.values, (std::vector<float>{1.5f, 2.5f, 0.5f, 1.0f}));
+  const std::string text = twin_source(s, lifted).text;
+  EXPECT_NE(text.find("const int kN = 2;\n float a , b[2] \n;\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("rm_Tweak_3 = rm_Tweak[3]; a = rm_Tweak_0; b = float[](rm_Tweak_1,   a);"), std::string::npos) << text;
+  EXPECT_NE(text.find("return p * rm_Tweak_2;"), std::string::npos);
+  EXPECT_NE(text.find("return 0.75"), std::string::npos);
 }
 
 TEST(Tweak, TheTwinReadsEachLiteralFromAGlobalThatMainSetsFromTheArray) {
