@@ -252,11 +252,38 @@ TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
 // Every example's twin draws the exact program's picture: the literals it
 // reads from rm_Tweak are the ones a constant may not need. (The edit
 // appends a 0 to the scene's last decimal number: new text, the same value.)
-class ExampleTwin : public TweakGpu, public ::testing::WithParamInterface<std::string> {};
+class ExampleTwin : public TweakGpu, public ::testing::WithParamInterface<std::string> {
+ protected:
+  fs::path original() const { return fs::path(RM_SOURCE_DIR) / "examples" / GetParam(); }
+
+  // The example is loaded and its twin built; then its file reads as
+  // `edited`, a save that must be a tweak drawing the exact picture.
+  void expect_tweak_draws_exact_picture(const std::string& edited) {
+    const fs::path path = original();
+    bool edit = false;
+    FileSystem files = disk_file_system();
+    files.read = [&, disk = files.read](const fs::path& p, std::string* error) -> std::optional<std::string> {
+      if (edit && p == path) return edited;
+      return disk(p, error);
+    };
+    SourceOptions options;
+    options.shaderlib_dir = shaderlib_dir();
+    Scene scene(path, options, files);
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
+    const Image exact = render(scene, {64, 36});
+    ASSERT_TRUE(scene.prepare_twin()) << "the driver rejected both twins, or nothing was lifted";
+    scene.commit_twin();
+    edit = true;
+    ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+    EXPECT_EQ(scene.times().driver, 0.0) << "a compile: a number was not lifted";
+    scene.commit();
+    ASSERT_TRUE(scene.tweaked());
+    EXPECT_LT(max_difference(render(scene, {64, 36}), exact), 1e-3f);
+  }
+};
 
 TEST_P(ExampleTwin, DrawsTheExactPicture) {
-  const fs::path original = fs::path(RM_SOURCE_DIR) / "examples" / GetParam();
-  const std::string text = test::read_file(original);
+  const std::string text = test::read_file(original());
   const std::regex decimal(R"(\b\d+\.\d+\b)");
   std::smatch last;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), decimal);
@@ -265,53 +292,15 @@ TEST_P(ExampleTwin, DrawsTheExactPicture) {
   ASSERT_FALSE(last.empty());
   std::string edited = text;
   edited.insert(static_cast<size_t>(last.position(0) + last.length(0)), "0");
-
-  bool edit = false;
-  FileSystem files = disk_file_system();
-  files.read = [&, disk = files.read](const fs::path& p, std::string* error) -> std::optional<std::string> {
-    if (edit && p == original) return edited;
-    return disk(p, error);
-  };
-  SourceOptions options;
-  options.shaderlib_dir = shaderlib_dir();
-  Scene scene(original, options, files);
-  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
-  const Image exact = render(scene, {64, 36});
-  ASSERT_TRUE(scene.prepare_twin()) << "the driver rejected the twin, or nothing was lifted";
-  scene.commit_twin();
-  edit = true;
-  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
-  scene.commit();
-  ASSERT_TRUE(scene.tweaked()) << last.str(0) << " is not lifted";
-  EXPECT_LT(max_difference(render(scene, {64, 36}), exact), 1e-3f);
+  expect_tweak_draws_exact_picture(edited);
 }
 
 // ... and with every decimal number of its code edited at once (a 0 appended:
 // new text, the same values), #defines and constants included: all are
 // lifted, and the twin still draws the exact picture.
 TEST_P(ExampleTwin, EveryDecimalNumberIsATweak) {
-  const fs::path original = fs::path(RM_SOURCE_DIR) / "examples" / GetParam();
-  const std::string edited =
-      std::regex_replace(lexing::strip_comments(test::read_file(original)), std::regex(R"(\b(\d+\.\d+)\b)"), "$&0");
-  bool edit = false;
-  FileSystem files = disk_file_system();
-  files.read = [&, disk = files.read](const fs::path& p, std::string* error) -> std::optional<std::string> {
-    if (edit && p == original) return edited;
-    return disk(p, error);
-  };
-  SourceOptions options;
-  options.shaderlib_dir = shaderlib_dir();
-  Scene scene(original, options, files);
-  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
-  const Image exact = render(scene, {64, 36});
-  ASSERT_TRUE(scene.prepare_twin()) << "the driver rejected both twins, or nothing was lifted";
-  scene.commit_twin();
-  edit = true;
-  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
-  EXPECT_EQ(scene.times().driver, 0.0) << "a compile: a number was not lifted";
-  scene.commit();
-  ASSERT_TRUE(scene.tweaked());
-  EXPECT_LT(max_difference(render(scene, {64, 36}), exact), 1e-3f);
+  expect_tweak_draws_exact_picture(std::regex_replace(lexing::strip_comments(test::read_file(original())),
+                                                      std::regex(R"(\b\d+\.\d+\b)"), "$&0"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, ExampleTwin,
