@@ -262,7 +262,6 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
   for (const LiftedLiterals::MovedInitialiser& m : lifted.moved) {
     index += static_cast<size_t>(std::count(skeleton.begin() + static_cast<std::ptrdiff_t>(at),
                                             skeleton.begin() + static_cast<std::ptrdiff_t>(m.from), kMark));
-    at = m.from;
     set += " " + m.target + " ";
     for (size_t k = m.from; k < m.to; ++k) {
       const char c = skeleton[k];
