@@ -49,10 +49,10 @@ class TweakGpu : public test::EglTest {
     return most;
   }
 
-  // kScene written to `path` and loaded into `scene`, with its twin built.
-  static void load_with_twin(Scene& scene, const fs::path& path) {
-    write_file(path, kScene);
-    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  // `text` written to `path` and loaded into `scene`, with its twin built.
+  static void load_with_twin(Scene& scene, const fs::path& path, const std::string& text = kScene) {
+    write_file(path, text);
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
     ASSERT_TRUE(scene.prepare_twin());
     scene.commit_twin();
   }
@@ -207,14 +207,11 @@ TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak
 // driver rejects that twin (an int constant needs a float one), the twin of
 // the function bodies stands in, and such a number is a code edit again.
 TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
-  const std::string constants = "#define kGreen 0.5\n" + with(kScene, "0.125", "kBlue") + "";
+  const std::string constants = "#define kGreen 0.5\n" + with(kScene, "0.125", "kBlue");
   const std::string scene = with(constants, "const float kSize = 0.5;", "const float kSize = 0.5;\nfloat kBlue = 0.125;");
   const auto path = dir_ / "scene.frag";
-  write_file(path, with(scene, "step(kSize, uv.y) * 0.5", "step(kSize, uv.y) * kGreen"));
   Scene wide(path, {});
-  ASSERT_EQ(wide.reload(), ReloadStatus::Swapped) << join(wide.diagnostics());
-  ASSERT_TRUE(wide.prepare_twin());
-  wide.commit_twin();
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(wide, path, with(scene, "step(kSize, uv.y) * 0.5", "step(kSize, uv.y) * kGreen")));
   for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
            {"kSize = 0.5", "kSize = 0.25"}, {"kBlue = 0.125", "kBlue = 0.75"}, {"kGreen 0.5", "kGreen 0.375"}}) {
     const std::string tweaked = with(test::read_file(path), from, to);
@@ -234,11 +231,8 @@ TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
 
   // An int constant made from kSize: that twin does not compile.
   const auto needed = dir_ / "needed.frag";
-  write_file(needed, with(scene, "float kBlue", "const int kCount = int(kSize * 4.0);\nfloat kBlue"));
   Scene narrow(needed, {});
-  ASSERT_EQ(narrow.reload(), ReloadStatus::Swapped) << join(narrow.diagnostics());
-  ASSERT_TRUE(narrow.prepare_twin());
-  narrow.commit_twin();
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(narrow, needed, with(scene, "float kBlue", "const int kCount = int(kSize * 4.0);\nfloat kBlue")));
   write_file(needed, with(test::read_file(needed), "uv.x * 0.25", "uv.x * 0.5"));
   ASSERT_EQ(narrow.prepare(), ReloadStatus::Swapped);
   EXPECT_EQ(narrow.times().driver, 0.0) << "a function body's number is still a tweak";
