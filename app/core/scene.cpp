@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/check.h"
@@ -163,17 +164,28 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
   // constant some other constant needs): then the one of the function bodies.
   for (const LiftScope scope : {LiftScope::WithConstants, LiftScope::FunctionBodies}) {
     LiftedLiterals lifted = lift_literals(good_source_, options_.shaderlib_dir, scope);
-    if (scope == LiftScope::WithConstants && lifted.constants == 0) continue;  // the same as the other
+    const bool constants = scope == LiftScope::WithConstants;
+    if (constants && lifted.constants == 0) {  // the same as the other
+      constants_rejected_.reset();
+      continue;
+    }
     std::string& failed = failed_twins_[static_cast<int>(scope)];
     if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed) continue;
     if (twin_ && twin_->scope == scope && twin_->skeleton == lifted.skeleton) return false;
     if (cancelled && cancelled()) return give_up();
-    Diagnostics ignored;  // the exact program built: a twin the driver rejects is only not there
-    std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &ignored);
+    // The exact program built: a twin the driver rejects is only not there.
+    Diagnostics rejected;
+    std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &rejected);
     if (!built) {
       failed = std::move(lifted.skeleton);
+      if (constants) {
+        const auto error = std::find_if(rejected.begin(), rejected.end(),
+                                        [](const Diagnostic& d) { return d.severity == Severity::Error; });
+        constants_rejected_ = error != rejected.end() ? *error : Diagnostic{Severity::Error, "", 0, 0, "rejected"};
+      }
       continue;
     }
+    if (constants) constants_rejected_.reset();
     if (cancelled && cancelled()) return give_up();
     if (on_built) on_built(path_, *built);
     pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built)};

@@ -85,6 +85,10 @@ class Scene {
   // driver's compile, and before the warm-up.
   bool prepare_twin(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit_twin();
+  // Why a constant's number compiles, not tweaked: the driver's first error
+  // for the twin that makes the constants variables (an int const made from
+  // a float const, say). None when that twin was built, or has no constants.
+  const std::optional<Diagnostic>& constants_twin_rejected() const { return constants_rejected_; }
   const Source& source() const { return good_source_; }  // of the running program
   // glslang's preprocessor output for the running program's text followed by
   // knob_probes(), line for line (from the same child as its validation).
@@ -134,6 +138,7 @@ class Scene {
   bool showing_twin_ = false;
   int twin_checked_ = -1;      // the generation prepare_twin() last looked at
   std::string failed_twins_[2];  // by LiftScope, the skeleton whose twin the driver rejected
+  std::optional<Diagnostic> constants_rejected_;
   Diagnostics pending_diagnostics_;
   void cache(Built built);
 };

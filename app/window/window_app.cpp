@@ -123,6 +123,7 @@ class WindowApp {
                       << (*built == ReloadStatus::Swapped ? "built" : builder_.cancelled() ? "put off" : "not built")
                       << " for generation " << project_.generation() << " in "
                       << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
+          if (options_.verbose) log_constants_compiled();
         } else {
           if (*built == ReloadStatus::Swapped) project_.commit();
           if (background_build_ && builder_.cancelled() && *built == ReloadStatus::Unchanged) {
@@ -322,6 +323,16 @@ class WindowApp {
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
     }
     update_title(true);
+  }
+
+  // -v: passes whose constants' numbers compile on a save, and why.
+  void log_constants_compiled() const {
+    for (const Pass& pass : project_.passes())
+      if (const auto& why = pass.scene->constants_twin_rejected())
+        std::cerr << "raymarching: " << pass.file.filename().string()
+                  << ": a number in a const, a global or a #define compiles when saved, not tweaked, as another "
+                     "constant needs it: "
+                  << why->str() << '\n';
   }
 
   void channel_failed(const std::string& error) {

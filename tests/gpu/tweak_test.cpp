@@ -228,11 +228,17 @@ TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
   }
   EXPECT_NEAR(render(wide, {16, 8}).pixel(0, 0)[1], 0.375f, 1e-6f);
   EXPECT_NEAR(render(wide, {16, 8}).pixel(0, 0)[2], 0.75f, 1e-6f);
+  EXPECT_FALSE(wide.constants_twin_rejected());
 
-  // An int constant made from kSize: that twin does not compile.
+  // An int constant made from kSize: that twin does not compile, and the
+  // driver's error says where (for -v).
   const auto needed = dir_ / "needed.frag";
   Scene narrow(needed, {});
   ASSERT_NO_FATAL_FAILURE(load_with_twin(narrow, needed, with(scene, "float kBlue", "const int kCount = int(kSize * 4.0);\nfloat kBlue")));
+  const std::optional<Diagnostic>& why = narrow.constants_twin_rejected();
+  ASSERT_TRUE(why);
+  EXPECT_EQ(fs::path(why->path), needed);
+  EXPECT_EQ(why->line, 3) << why->str();
   write_file(needed, with(test::read_file(needed), "uv.x * 0.25", "uv.x * 0.5"));
   ASSERT_EQ(narrow.prepare(), ReloadStatus::Swapped);
   EXPECT_EQ(narrow.times().driver, 0.0) << "a function body's number is still a tweak";
