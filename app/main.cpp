@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "commands/accuracy.h"
 #include "commands/check.h"
@@ -17,6 +19,24 @@
 #include "commands/window.h"
 #include "core/diagnostics.h"
 #include "window/window_app.h"
+
+namespace {
+
+// CLI11 checks the required options before it looks for unknown ones: a
+// mistyped option would be reported as the missing one it was meant to be.
+// (And CLI11 2.1 lists the unexpected arguments last first.)
+std::string usage_error(const CLI::App& app, const CLI::ParseError& e) {
+  if (dynamic_cast<const CLI::RequiredError*>(&e) == nullptr && dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr)
+    return e.what();
+  const std::vector<std::string> unexpected = app.remaining(true);  // with the subcommand's, in order
+  if (unexpected.empty()) return e.what();
+  std::string message = unexpected.size() == 1 ? "The following argument was not expected:"
+                                               : "The following arguments were not expected:";
+  for (const std::string& arg : unexpected) message += " " + arg;
+  return message;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"raymarching: a live shader playground for ray-marched SDF scenes.\n"
@@ -40,7 +60,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << "raymarching: error: " << e.what() << " (see raymarching --help)\n";
+    const std::vector<CLI::App*> command = app.get_subcommands();  // the one given, if any
+    std::cerr << "raymarching: error: " << usage_error(app, e) << " (see raymarching "
+              << (command.empty() ? "" : command[0]->get_name() + " ") << "--help)\n";
     return rm::kExitUsage;
   }
 

@@ -297,7 +297,11 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o /proc/rm-cli-test.png", "'/proc/rm-cli-test.png'"},
       {"render " + g + " -o " + (dir_ / "a_file/o.png").string(), "is not a directory"},
       {"render " + g + " -o " + out + " -D 9bad=1", "-D '9bad=1'"},
-      {"render " + g, "--output"},
+      {"render " + g, "--output is required"},
+      // A mistyped option is named, not the required one it may have meant;
+      // the unexpected arguments in the order given.
+      {"render " + g + " --ouptut " + out, "not expected: --ouptut " + out + " ("},
+      {"render " + g + " -o " + out + " -x 3 -y", "not expected: -x 3 -y (see raymarching render --help)"},
       {"render " + g + " -o " + out + " --timeout 0", "--timeout"},
       // NaN passes CLI11's Range; a number past the clock's reach overflowed it.
       {"render " + g + " -o " + out + " --timeout nan", "--timeout: 'nan' is not a number from 0.001 to 1e+08"},
