@@ -56,14 +56,20 @@ std::vector<KnobValue> knob_values(const Source& source, const std::string* give
                                                : active_code(source.text + "\n" + knob_probes());
   if (!active) return out;
   for (size_t i = 0; i < table.size(); ++i) {
-    const std::string marker = "rm_knob_probe_" + std::to_string(i) + " ";
-    const size_t at = active->rfind(marker);
+    // "rm_knob_probe_4 160;", or "rm_knob_probe_4(1.0 + 0.25);": glslang
+    // writes no space before a parenthesis.
+    const std::string marker = "rm_knob_probe_" + std::to_string(i);
+    size_t at = active->rfind(marker);
+    while (at != std::string::npos && at + marker.size() < active->size() &&
+           std::isdigit(static_cast<unsigned char>((*active)[at + marker.size()])))  // probe_14, not probe_1
+      at = at == 0 ? std::string::npos : active->rfind(marker, at - 1);
     if (at == std::string::npos) continue;
     const size_t begin = at + marker.size();
     const size_t end = active->find(';', begin);
     if (end == std::string::npos) continue;
     std::string value = active->substr(begin, end - begin);
     while (!value.empty() && value.back() == ' ') value.pop_back();
+    while (!value.empty() && value.front() == ' ') value.erase(0, 1);
     if (value == table[i].name) continue;  // not defined: the scene does not use it
     out.push_back({&table[i], value});
   }

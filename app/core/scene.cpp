@@ -80,7 +80,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
     // The same tokens: comments and blanks may differ (a comment-only save
     // left the twin's text behind).
     if (lifted.ok && lexing::code_only(lifted.skeleton) == lexing::code_only(twin_->skeleton)) {
-      pending_tweak_ = Tweak{std::move(source), std::move(lifted.values)};
+      pending_tweak_ = Tweak{std::move(source), std::move(lifted.values), std::move(lifted.literals)};
       pending_diagnostics_.clear();  // not the last attempt's errors
       return ReloadStatus::Swapped;
     }
@@ -118,7 +118,8 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
 void Scene::commit() {
   if (pending_tweak_) {
     twin_->program.set_floats(kTweakUniform, pending_tweak_->values);
-    std::string active = good_active_;  // a number's change leaves the knobs as they are
+    shown_literals_ = std::move(pending_tweak_->literals);
+    std::string active = good_active_;  // the exact program's: knobs() reads the twin's
     if (program_) cache({good_source_.text, std::move(*program_), std::move(good_source_), std::move(good_active_)});
     program_.reset();
     good_source_ = std::move(pending_tweak_->source);
@@ -175,7 +176,8 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     if (cancelled && cancelled()) return give_up();
     // The exact program built: a twin the driver rejects is only not there.
     Diagnostics rejected;
-    std::optional<Program> built = Program::build(twin_source(good_source_, lifted), &rejected);
+    const Source twin = twin_source(good_source_, lifted);
+    std::optional<Program> built = Program::build(twin, &rejected);
     if (!built) {
       failed = std::move(lifted.skeleton);
       if (constants) {
@@ -188,10 +190,18 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     if (constants) constants_rejected_.reset();
     if (cancelled && cancelled()) return give_up();
     if (on_built) on_built(path_, *built);
-    pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built)};
+    // A knob's #define may hold a lifted number: its value is the tweak's.
+    pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built), knob_values(twin)};
     return true;
   }
   return false;
+}
+
+std::vector<KnobValue> Scene::knobs() const {
+  if (!showing_twin_) return knob_values(good_source_, &good_active_);
+  std::vector<KnobValue> out = twin_->knobs;
+  for (KnobValue& k : out) k.value = with_literals(k.value, shown_literals_);
+  return out;
 }
 
 void Scene::commit_twin() {

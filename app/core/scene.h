@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "core/knobs.h"
 #include "core/program.h"
 #include "core/source.h"
 #include "core/tweak.h"
@@ -89,6 +90,8 @@ class Scene {
   // for the twin that makes the constants variables (an int const made from
   // a float const, say). None when that twin was built, or has no constants.
   const std::optional<Diagnostic>& constants_twin_rejected() const { return constants_rejected_; }
+  // shaderlib's knobs the running program uses, at its values (a tweak's too).
+  std::vector<KnobValue> knobs() const;
   const Source& source() const { return good_source_; }  // of the running program
   // glslang's preprocessor output for the running program's text followed by
   // knob_probes(), line for line (from the same child as its validation).
@@ -128,14 +131,17 @@ class Scene {
     LiftScope scope;
     std::string skeleton;  // of the texts it can show (LiftedLiterals)
     Program program;
+    std::vector<KnobValue> knobs;  // as its source has them: a lifted value by its name there
   };
   std::optional<Twin> twin_, pending_twin_;
   struct Tweak {
     Source source;
     std::vector<float> values;
+    std::vector<std::string> literals;  // the values as written
   };
   std::optional<Tweak> pending_tweak_;
   bool showing_twin_ = false;
+  std::vector<std::string> shown_literals_;  // the numbers the twin shows while it does, as written
   int twin_checked_ = -1;      // the generation prepare_twin() last looked at
   std::string failed_twins_[2];  // by LiftScope, the skeleton whose twin the driver rejected
   std::optional<Diagnostic> constants_rejected_;

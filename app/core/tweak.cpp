@@ -1,6 +1,7 @@
 #include "core/tweak.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -107,6 +108,7 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     const float value = std::strtof(token.c_str(), nullptr);
     if (!std::isfinite(value) || out.values.size() == kMaxTweaks) out.ok = false;
     out.values.push_back(value);
+    out.literals.push_back(token);
     out.constants += constant ? 1 : 0;
     out.skeleton += kMark;
   };
@@ -250,10 +252,16 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
   return out;
 }
 
+namespace {
+
+std::string tweak_global(size_t i) { return std::string(kTweakUniform) + "_" + std::to_string(i); }
+
+}  // namespace
+
 Source twin_source(const Source& source, const LiftedLiterals& lifted) {
   const std::string& skeleton = lifted.skeleton;
   const size_t count = lifted.values.size();
-  auto global = [](size_t i) { return std::string(kTweakUniform) + "_" + std::to_string(i); };
+  const auto global = tweak_global;
   std::string set;  // what main() does first
   for (size_t i = 0; i < count; ++i) set += " " + global(i) + " = " + kTweakUniform + "[" + std::to_string(i) + "];";
   // Then each moved initialiser, in order, on main()'s first line, its marks
@@ -315,6 +323,25 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
   twin.text.insert(at, declaration);
   twin.line_map.insert(twin.line_map.begin() + static_cast<std::ptrdiff_t>(first), Origin{});
   return twin;
+}
+
+std::string with_literals(const std::string& text, const std::vector<std::string>& literals) {
+  const std::string prefix = tweak_global(0).substr(0, std::string_view(kTweakUniform).size() + 1);  // "rm_Tweak_"
+  auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::string out;
+  size_t at = 0;
+  for (size_t found; (found = text.find(prefix, at)) != std::string::npos;) {
+    size_t end = found + prefix.size();
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+    const bool whole = (found == 0 || !word(text[found - 1])) && end > found + prefix.size() &&
+                       (end == text.size() || !word(text[end]));
+    const size_t i = whole ? std::strtoul(text.c_str() + found + prefix.size(), nullptr, 10) : literals.size();
+    out.append(text, at, found - at);
+    out.append(i < literals.size() ? literals[i] : text.substr(found, end - found));
+    at = end;
+  }
+  out.append(text, at, std::string::npos);
+  return out;
 }
 
 }  // namespace rm

@@ -35,6 +35,7 @@ struct LiftedLiterals {
   // two texts with the same skeleton differ only in those literals.
   std::string skeleton;
   std::vector<float> values;  // the lifted literals, in order
+  std::vector<std::string> literals;  // the same, as written
   bool ok = true;             // false: too many, or one not finite
   std::vector<size_t> main_bodies;  // skeleton offsets just inside each main()'s '{'
   // WithConstants only:
@@ -57,5 +58,9 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
 // in place, the array made gallery's frames 2.3 times as slow, the globals
 // 1.2 times.
 Source twin_source(const Source& source, const LiftedLiterals& lifted);
+
+// `text` from the twin (its preprocessor's output, say) with the name it
+// gives literal i written as literals[i]: what the exact program has there.
+std::string with_literals(const std::string& text, const std::vector<std::string>& literals);
 
 }  // namespace rm

@@ -370,7 +370,7 @@ class WindowApp {
     for (const Define& d : source_.defines)
       for (const char* preset : quality_presets())
         if (d.name == "RM_QUALITY" && d.value == preset_macro(preset)) model_.preset = preset;
-    for (const KnobValue& k : knob_values(project_.image_source(), &project_.image().scene->active_code())) {
+    for (const KnobValue& k : project_.image().scene->knobs()) {
       KnobControl control{k, false, 0.0f};
       for (const Define& d : source_.defines) control.overridden |= d.name == k.knob->name;
       control.edit = static_cast<float>(std::atof(k.value.c_str()));

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 
 #include "core/data_paths.h"
@@ -247,6 +248,37 @@ TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
   write_file(needed, with(test::read_file(needed), "kSize = 0.5", "kSize = 0.25"));
   ASSERT_EQ(narrow.prepare(), ReloadStatus::Swapped);
   EXPECT_GT(narrow.times().driver, 0.0) << "the constant's number compiles";
+}
+
+// A knob's number is a tweak, and the knobs (the panel's) show its new value
+// at once: what the exact program that follows has.
+TEST_F(TweakGpu, AKnobsNumberShowsInTheKnobsWithTheTweak) {
+  const auto path = dir_ / "scene.frag";
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  Scene scene(path, options);
+  const std::string text = "#define RM_HIT_PIXELS 0.35\n#define RM_OMEGA (1.0 + 0.25)\n#include <rm/march.glsl>\n"
+                           "float map(vec3 p) { return length(p) - 1.0; }\n" + std::string(kScene);
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path, text));
+  auto knobs = [&] {
+    std::map<std::string, std::string> out;
+    for (const KnobValue& k : scene.knobs()) out[k.knob->name] = k.value;
+    return out;
+  };
+  EXPECT_EQ(knobs().at("RM_HIT_PIXELS"), "0.35");
+  EXPECT_EQ(knobs().at("RM_OMEGA"), "(1.0 + 0.25)");
+  write_file(path, with(with(text, "0.35", "0.5e0"), "0.25)", "0.125)"));
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().driver, 0.0) << "a tweak";
+  scene.commit();
+  ASSERT_TRUE(scene.tweaked());
+  const auto tweaked = knobs();
+  EXPECT_EQ(tweaked.at("RM_HIT_PIXELS"), "0.5e0");
+  EXPECT_EQ(tweaked.at("RM_OMEGA"), "(1.0 + 0.125)");
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);  // the exact program
+  scene.commit();
+  ASSERT_FALSE(scene.tweaked());
+  EXPECT_EQ(knobs(), tweaked);
 }
 
 // Every example's twin draws the exact program's picture: the literals it

@@ -45,6 +45,17 @@ TEST(Knobs, TheScenesOwnDefinesThenDThenThePreset) {
   EXPECT_EQ(knobs_of("#include <rm/march.glsl>\n", {{"RM_QUALITY", preset_macro("draft")}}).at("RM_MAX_STEPS"), "64");
 }
 
+// glslang writes no space between a word and a parenthesis: a knob set to
+// an expression in parentheses is still one.
+TEST(Knobs, AValueInParentheses) {
+  const auto knobs = knobs_of("#define RM_OMEGA (1.0 + 0.25)\n#define RM_REFLECTIONS 3\n#include <rm/render.glsl>\n"
+                              "float map(vec3 p) { return length(p) - 1.0; }\n"
+                              "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(1.0)); }\n");
+  EXPECT_EQ(knobs.at("RM_OMEGA"), "(1.0 + 0.25)");
+  EXPECT_EQ(knobs.at("RM_HIT_EPSILON"), "1e-4");  // probe 1, not probe 10, 11 or 12
+  EXPECT_EQ(knobs.at("RM_REFLECTIONS"), "3");
+}
+
 // The window reads them from its validation's child: one fork per reload.
 TEST(Knobs, TheSameFromValidation) {
   const std::string scene = "#define RM_SHADOW_STEPS 12\n#include <rm/render.glsl>\n"

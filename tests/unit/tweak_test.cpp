@@ -184,6 +184,23 @@ TEST(Tweak, TheTwinReadsEachLiteralFromAGlobalThatMainSetsFromTheArray) {
             source.locate(static_cast<int>(line_of(source, first_user_line)) + 1));
 }
 
+// What the twin's preprocessor says of a knob, in the exact program's words:
+// each rm_Tweak_i as literal i was written, other words left alone.
+TEST(Tweak, TheTwinsNamesReadAsTheLiteralsWritten) {
+  const Source source = source_of(kScene);
+  const LiftedLiterals lifted = lift_literals(source, "/lib");
+  ASSERT_EQ(lifted.literals.size(), lifted.values.size());
+  EXPECT_EQ(lifted.literals[0], "0.25");
+  EXPECT_EQ(lifted.literals[1], "1e-2");
+  EXPECT_EQ(lifted.literals[5], "7.0f");
+  const std::vector<std::string> literals = {"0.50", "1e-4", "2.f"};
+  EXPECT_EQ(with_literals("rm_Tweak_1", literals), "1e-4");
+  EXPECT_EQ(with_literals("( 100.0 * rm_Tweak_0 ) + rm_Tweak_2", literals), "( 100.0 * 0.50 ) + 2.f");
+  EXPECT_EQ(with_literals("xrm_Tweak_1 rm_Tweak_1x rm_Tweak_ rm_Tweak_3", literals),
+            "xrm_Tweak_1 rm_Tweak_1x rm_Tweak_ rm_Tweak_3");
+  EXPECT_EQ(with_literals("", literals), "");
+}
+
 TEST(Tweak, EveryMainSetsTheGlobals) {
   // A complete shader with a main() in each branch of an #if: both set them.
   const std::string complete = "#version 450\nout vec4 o;\n#ifdef A\nvoid main() { o = vec4(0.5); }\n#else\n"
