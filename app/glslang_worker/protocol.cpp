@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
+#include <system_error>
 #include <vector>
 
 namespace rm {
@@ -95,9 +97,20 @@ bool write_reply(int fd, const GlslangReply& r) {
 std::optional<GlslangReply> read_reply(int fd, ReplyDeadline deadline) {
   const auto s = read_strings(fd, deadline, 3);
   if (!s) return std::nullopt;
+  // A reply that does not parse is no reply (the worker is ours: a bug).
+  auto number = [](const std::string& text) -> std::optional<int> {
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+    return value;
+  };
+  const auto status = number((*s)[0]);
+  const auto signal = number((*s)[1]);
+  if (!status || *status < 0 || *status > static_cast<int>(GlslangReply::Status::NoWorker) || !signal)
+    return std::nullopt;
   GlslangReply r;
-  r.status = static_cast<GlslangReply::Status>(std::stoi((*s)[0]));
-  r.signal = std::stoi((*s)[1]);
+  r.status = static_cast<GlslangReply::Status>(*status);
+  r.signal = *signal;
   r.output = (*s)[2];
   return r;
 }

@@ -30,7 +30,7 @@ struct GlslangRequest {
 };
 
 struct GlslangReply {
-  enum class Status { Ok, TimedOut, OutOfMemory, Crashed, NoWorker };
+  enum class Status { Ok, TimedOut, OutOfMemory, Crashed, NoWorker };  // NoWorker last: read_reply checks
   Status status = Status::Ok;
   int signal = 0;  // the signal that ended the work (Crashed)
   // Ok: the work's result. Validate: "DEPTH LINE\n" (the tree's deepest

@@ -1,15 +1,19 @@
-// The glslang worker, seen from the host: one process answers request after
-// request, one that went away is started again, and requests are answered
-// while another thread of the host allocates (a fork of the host itself could
-// hang on a lock that thread held).
+// The glslang worker, seen from the host: its replies over the socket (a
+// garbled one is none); one process answers request after request, one that
+// went away is started again, and requests are answered while another thread
+// of the host allocates (a fork of the host itself could hang on a lock that
+// thread held).
 #include "core/glslang_client.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/types.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
+#include <optional>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -100,6 +104,46 @@ TEST(GlslangWorker, AnswersWhileAnotherThreadAllocates) {
   stop = true;
   allocating.join();
   EXPECT_EQ(answered, 200);
+}
+
+// A reply goes over the socket as it came; one whose status or signal is
+// not a number the host knows is no reply, not an exception.
+TEST(GlslangProtocol, AReplyRoundTripsAndAGarbledOneIsNone) {
+  int fds[2];
+  ASSERT_EQ(socketpair(AF_UNIX, SOCK_STREAM, 0, fds), 0);
+  GlslangReply sent;
+  sent.status = GlslangReply::Status::Crashed;
+  sent.signal = SIGSEGV;
+  sent.output = std::string("a\0b", 3);
+  ASSERT_TRUE(write_reply(fds[0], sent));
+  const std::optional<GlslangReply> got = read_reply(fds[1], std::nullopt);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->status, sent.status);
+  EXPECT_EQ(got->signal, SIGSEGV);
+  EXPECT_EQ(got->output, sent.output);
+  // The same framing as write_reply: a count, then each string's length and bytes.
+  auto raw = [&](const std::vector<std::string>& strings) {
+    std::string bytes;
+    const std::uint64_t count = strings.size();
+    bytes.append(reinterpret_cast<const char*>(&count), sizeof count);
+    for (const std::string& text : strings) {
+      const std::uint64_t size = text.size();
+      bytes.append(reinterpret_cast<const char*>(&size), sizeof size);
+      bytes += text;
+    }
+    ASSERT_EQ(write(fds[0], bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+  };
+  for (const auto& [status, signal] : std::vector<std::pair<std::string, std::string>>{
+           {"x", "0"}, {"", "0"}, {"99", "0"}, {"-1", "0"}, {"1", "9x"}, {"99999999999999999999", "0"}}) {
+    raw({status, signal, "out"});
+    EXPECT_FALSE(read_reply(fds[1], std::nullopt)) << status << " " << signal;
+  }
+  raw({"0", "0", "fine"});
+  const std::optional<GlslangReply> after = read_reply(fds[1], std::nullopt);
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->output, "fine");
+  close(fds[0]);
+  close(fds[1]);
 }
 
 }  // namespace
