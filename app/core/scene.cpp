@@ -190,8 +190,11 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     if (constants) constants_rejected_.reset();
     if (cancelled && cancelled()) return give_up();
     if (on_built) on_built(path_, *built);
-    // A knob's #define may hold a lifted number: its value is the tweak's.
-    pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built), knob_values(twin)};
+    // A knob's #define may hold a lifted number (a constant): its value is
+    // then the tweak's, which the twin's preprocessor gives by name.
+    if (constants && cancelled && cancelled()) return give_up();
+    std::vector<KnobValue> knobs = constants ? knob_values(twin) : knob_values(good_source_, &good_active_);
+    pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built), std::move(knobs)};
     return true;
   }
   return false;
