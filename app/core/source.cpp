@@ -15,8 +15,6 @@ namespace rm {
 namespace {
 
 constexpr int kMaxIncludeDepth = 256;
-constexpr int kHostFile = -1;
-constexpr int kCommandLineFile = -2;
 
 // The Shadertoy prelude: the host inputs (core/host_inputs.h), then each
 // channel as what it is bound to.

@@ -30,9 +30,12 @@ enum class ShaderKind {
 };
 const char* to_string(ShaderKind kind);
 
-// Where one line of the final source came from. file < 0 marks host lines.
+// Where one line of the final source came from. file < 0 marks host lines:
+// kCommandLineFile those of the -D options (line: the option's number).
+inline constexpr int kHostFile = -1;
+inline constexpr int kCommandLineFile = -2;
 struct Origin {
-  int file = -1;
+  int file = kHostFile;
   int line = 0;
 };
 

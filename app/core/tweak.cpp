@@ -103,6 +103,10 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     const int file = source.line_map[line].file;
     return file >= 0 && static_cast<size_t>(file) < user_file.size() && user_file[static_cast<size_t>(file)];
   };
+  // A -D's value is the user's too: the knobs the window's controls set.
+  auto option_line = [&](size_t line) {
+    return line < source.line_map.size() && source.line_map[line].file == kCommandLineFile;
+  };
   // Replaces a float literal by the mark; `constant`: one FunctionBodies leaves.
   auto lift = [&](const std::string& token, bool constant) {
     const float value = std::strtof(token.c_str(), nullptr);
@@ -155,7 +159,7 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
         }
         const std::string_view text = std::string_view(code).substr(i, end - i);
         const std::optional<lexing::Directive> d = lexing::directive(text);
-        if (wide && d && d->name == "define" && user_line(first_line)) {  // its value's literals
+        if (wide && d && d->name == "define" && (user_line(first_line) || option_line(first_line))) {  // its value's literals
           out.skeleton.append(text.substr(0, d->rest_at));
           for (size_t k = d->rest_at; k < text.size();) {
             if (lexing::is_word_start(text[k])) {

@@ -7,10 +7,11 @@
 // Where a literal may be lifted, by scope:
 // - FunctionBodies: where any expression may stand, in a function body
 //   outside `const` declarations.
-// - WithConstants: also the values of float constants and globals, and of
-//   #defines. The twin makes them plain variables: a local `const float`
-//   loses its `const`, and a global float declaration's initialiser moves
-//   into main(). A constant that an integer constant, an array size or a
+// - WithConstants: also the values of float constants and globals, of
+//   #defines, and of -D options (the knobs the window's controls set). The
+//   twin makes them plain variables: a local `const float` loses its
+//   `const`, and a global float declaration's initialiser moves into
+//   main(). A constant that an integer constant, an array size or a
 //   global's initialiser needs then makes the driver reject the twin, and
 //   the scene falls back to the FunctionBodies twin.
 // Never: the bundled shaderlib, ints, doubles, hex, #if lines.

@@ -281,6 +281,33 @@ TEST_F(TweakGpu, AKnobsNumberShowsInTheKnobsWithTheTweak) {
   EXPECT_EQ(knobs(), tweaked);
 }
 
+// A -D's number is a tweak too: the window's controls set the knobs so,
+// and the second change of a knob shows without a compile.
+TEST_F(TweakGpu, AnOptionsNumberIsATweak) {
+  const auto path = dir_ / "scene.frag";
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  options.defines = {{"GAIN", "0.25"}, {"RM_HIT_PIXELS", "0.5"}};
+  Scene scene(path, options);
+  const std::string text = "#include <rm/march.glsl>\nfloat map(vec3 p) { return length(p) - 1.0; }\n" +
+                           with(kScene, "uv.x * 0.25", "uv.x * GAIN");
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path, text));
+  options.defines = {{"GAIN", "0.75"}, {"RM_HIT_PIXELS", "2.0"}};
+  scene.set_options(options);
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().driver, 0.0) << "a tweak";
+  scene.commit();
+  ASSERT_TRUE(scene.tweaked());
+  std::string hit;
+  for (const KnobValue& k : scene.knobs())
+    if (std::string(k.knob->name) == "RM_HIT_PIXELS") hit = k.value;
+  EXPECT_EQ(hit, "2.0");
+  Scene exact(path, options);
+  ASSERT_EQ(exact.reload(), ReloadStatus::Swapped);
+  EXPECT_EQ(max_difference(render(scene, {16, 8}), render(exact, {16, 8})), 0.0f);
+  EXPECT_NEAR(render(scene, {16, 8}).pixel(15, 0)[0], 0.75f * 15.5f / 16.0f, 1e-6f);
+}
+
 // Every example's twin draws the exact program's picture: the literals it
 // reads from rm_Tweak are the ones a constant may not need. (The edit
 // appends a 0 to the scene's last decimal number: new text, the same value.)
