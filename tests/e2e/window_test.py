@@ -17,7 +17,8 @@ The interface (Dear ImGui), compared on the X screen itself (xwd) with F12:
 hidden it is exactly F12; a broken save puts text over the kept picture and
 the fix takes it away; a slider drag changes the picture, not iMouse, and
 `render --set` of the shot matches; the value survives a reload; the Pause
-button pauses; a knob moved in tori's panel rebuilds it with the -D, which
+button pauses; a knob moved in tori's panel rebuilds it with the -D (a
+float knob's second move is a number edit, no compile), which
 F12 records for `render`; a warning shows in a smaller line until dismissed.
 Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
@@ -456,6 +457,7 @@ KNOB_SIZE = (640, 400)
 # below Time (4 rows), Uniforms (spin, polish) and the knobs' header, frame
 # time, preset, RM_HIT_PIXELS and RM_HIT_EPSILON.
 MAX_STEPS_SLIDER = (KNOB_SIZE[0] - 10 - 330 + 12, 316)
+HIT_PIXELS_SLIDER = (KNOB_SIZE[0] - 10 - 330 + 12, 316 - 2 * 23)  # two rows up; its left end
 
 
 def knob_session():
@@ -477,9 +479,25 @@ def knob_session():
           wait_for(lambda: all(line in open(err_path).read() for line in ("reload ok generation 2", "-D RM_MAX_STEPS=")),
                    timeout=30), open(err_path).read()[-2000:])
     wait_for(lambda: "presented generation 2" in open(err_path).read(), timeout=30)
+    # A float knob's first change compiles; once the twins of that program
+    # are built, its next is a number edit, shown with no compile.
+    x, y = HIT_PIXELS_SLIDER
+    for generation, at in ((3, x), (4, x + 50)):
+        xdotool("mousemove", "--window", window, str(at), str(y))
+        time.sleep(0.5)
+        xdotool("click", "--window", window, 1)
+        wait_for(lambda: f"reload ok generation {generation}" in open(err_path).read(), timeout=30)
+        if generation == 3:
+            wait_for(lambda: "twins built for generation 3" in open(err_path).read(), timeout=30)
+    log = open(err_path).read()
+    check("a float knob's second change is a number edit, with no compile",
+          log.count("-D RM_HIT_PIXELS=") == 2 and "reload ok generation 4 (tweaked" in log, log[-2000:])
+    wait_for(lambda: "presented generation 4" in open(err_path).read(), timeout=30)
     shot = take_screenshot(window, out_path)
     steps = metadata(shot).get("raymarching:define:RM_MAX_STEPS") if shot else None
     check("F12 records the knob", steps is not None and int(steps) < 30, steps)
+    hit = metadata(shot).get("raymarching:define:RM_HIT_PIXELS") if shot else None
+    check("... and the float knob, at its second value", hit is not None and 2.0 < float(hit) < 16.0, hit)
     ok, detail = matches_render(shot, tori, work) if shot else (False, "no shot")
     check("... and render of the shot's command line matches it", ok, detail)
     status = quit_with(proc, window, "q")
