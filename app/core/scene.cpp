@@ -190,10 +190,13 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     if (constants) constants_rejected_.reset();
     if (cancelled && cancelled()) return give_up();
     if (on_built) on_built(path_, *built);
-    // A knob's #define may hold a lifted number (a constant): its value is
-    // then the tweak's, which the twin's preprocessor gives by name.
-    if (constants && cancelled && cancelled()) return give_up();
-    std::vector<KnobValue> knobs = constants ? knob_values(twin) : knob_values(good_source_, &good_active_);
+    // A knob's #define or -D may hold a lifted number (a constant): its
+    // value is then the tweak's, which the twin's preprocessor gives by name.
+    std::vector<KnobValue> knobs;
+    if (constants) {
+      if (cancelled && cancelled()) return give_up();
+      knobs = knob_values(twin);
+    }
     pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built), std::move(knobs)};
     return true;
   }
@@ -201,7 +204,8 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
 }
 
 std::vector<KnobValue> Scene::knobs() const {
-  if (!showing_twin_) return knob_values(good_source_, &good_active_);
+  // The function bodies' twin lifts no knob: its tweaks leave them as they are.
+  if (!showing_twin_ || twin_->scope != LiftScope::WithConstants) return knob_values(good_source_, &good_active_);
   std::vector<KnobValue> out = twin_->knobs;
   for (KnobValue& k : out) k.value = with_literals(k.value, shown_literals_);
   return out;

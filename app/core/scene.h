@@ -131,7 +131,7 @@ class Scene {
     LiftScope scope;
     std::string skeleton;  // of the texts it can show (LiftedLiterals)
     Program program;
-    std::vector<KnobValue> knobs;  // as its source has them: a lifted value by its name there
+    std::vector<KnobValue> knobs;  // WithConstants: as its source has them, a lifted value by its name there
   };
   std::optional<Twin> twin_, pending_twin_;
   struct Tweak {

@@ -159,7 +159,8 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
         }
         const std::string_view text = std::string_view(code).substr(i, end - i);
         const std::optional<lexing::Directive> d = lexing::directive(text);
-        if (wide && d && d->name == "define" && (user_line(first_line) || option_line(first_line))) {  // its value's literals
+        // A #define of the user's files or of a -D: its value's literals.
+        if (wide && d && d->name == "define" && (user_line(first_line) || option_line(first_line))) {
           out.skeleton.append(text.substr(0, d->rest_at));
           for (size_t k = d->rest_at; k < text.size();) {
             if (lexing::is_word_start(text[k])) {
@@ -258,16 +259,18 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
 
 namespace {
 
-std::string tweak_global(size_t i) { return std::string(kTweakUniform) + "_" + std::to_string(i); }
+// The twin's global for literal i: rm_Tweak_i.
+const std::string kGlobalPrefix = std::string(kTweakUniform) + "_";
+std::string tweak_global(size_t i) { return kGlobalPrefix + std::to_string(i); }
 
 }  // namespace
 
 Source twin_source(const Source& source, const LiftedLiterals& lifted) {
   const std::string& skeleton = lifted.skeleton;
   const size_t count = lifted.values.size();
-  const auto global = tweak_global;
   std::string set;  // what main() does first
-  for (size_t i = 0; i < count; ++i) set += " " + global(i) + " = " + kTweakUniform + "[" + std::to_string(i) + "];";
+  for (size_t i = 0; i < count; ++i)
+    set += " " + tweak_global(i) + " = " + kTweakUniform + "[" + std::to_string(i) + "];";
   // Then each moved initialiser, in order, on main()'s first line, its marks
   // numbered as where they stand.
   size_t index = 0, at = 0;
@@ -277,7 +280,7 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
     set += " " + m.target + " ";
     for (size_t k = m.from; k < m.to; ++k) {
       const char c = skeleton[k];
-      set += c == kMark ? global(index++) : c == '\n' ? std::string(" ") : std::string(1, c);
+      set += c == kMark ? tweak_global(index++) : c == '\n' ? std::string(" ") : std::string(1, c);
     }
     at = m.to;
     set += ";";
@@ -309,7 +312,7 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
       continue;
     }
     const char c = skeleton[at];
-    if (c == kMark) twin.text += global(index++);
+    if (c == kMark) twin.text += tweak_global(index++);
     else twin.text += c;
   }
   // The declaration goes before the first line of the user's files.
@@ -322,7 +325,7 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
   }
   if (at == std::string::npos) at = twin.text.size();
   std::string declaration = "uniform float " + std::string(kTweakUniform) + "[" + std::to_string(std::max<size_t>(count, 1)) + "];";
-  for (size_t i = 0; i < count; ++i) declaration += (i == 0 ? " float " : ", ") + global(i);
+  for (size_t i = 0; i < count; ++i) declaration += (i == 0 ? " float " : ", ") + tweak_global(i);
   declaration += count > 0 ? ";\n" : "\n";
   twin.text.insert(at, declaration);
   twin.line_map.insert(twin.line_map.begin() + static_cast<std::ptrdiff_t>(first), Origin{});
@@ -330,7 +333,7 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted) {
 }
 
 std::string with_literals(const std::string& text, const std::vector<std::string>& literals) {
-  const std::string prefix = tweak_global(0).substr(0, std::string_view(kTweakUniform).size() + 1);  // "rm_Tweak_"
+  const std::string& prefix = kGlobalPrefix;
   auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   std::string out;
   size_t at = 0;
