@@ -306,7 +306,11 @@ class WindowApp {
       too_slow_ = false;
       last_swap_ns_ = steady_ns();
     }
-    if (!same_picture) dirty_ = true;  // a new program, or the stale badge and title
+    // A new program is drawn. A failed save changes no picture: the kept
+    // one is shown again under the stale badge, not drawn and refined anew
+    // (a picture that went straight to the window is not kept).
+    if (status == ReloadStatus::Swapped ? !same_picture : !picture_.has_picture()) dirty_ = true;
+    else if (status == ReloadStatus::Failed) ui_frames_ = std::max(ui_frames_, 1);
     ui_event();
     if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
     if (options_.verbose) {

@@ -613,6 +613,21 @@ def tweak_at_rest():
     later = log()[before:]
     check("a save of comments and blanks only neither rebuilds nor redraws the still",
           "building generation" in later and not re.search(r"raymarching: (reload ok|picture|sample) ", later), later)
+    # A broken save changes no picture either: the kept still is shown again
+    # under the stale badge (it used to be drawn again and refined anew).
+    before = len(log())
+    save_by_rename(scene, SCENE_BROKEN)
+    wait_for(lambda: "reload failed" in log()[before:])
+    time.sleep(1.0)
+    later = log()[before:]
+    check("a broken save of a still neither draws nor refines it again",
+          "reload failed" in later and not re.search(r"raymarching: (picture|sample) ", later), later)
+    screen = capture_screen(window, os.path.join(work, "broken.ppm"))
+    corner, middle = (pixel(screen, 1, 1, work), pixel(screen, 32, 18, work)) if screen else (None, None)
+    check("... and the window shows the still under the red stale badge",
+          corner is not None and corner[0] > 0.8 and corner[1] < 0.2 and middle[0] < 0.8, (corner, middle))
+    ok, detail = matches_render(take_screenshot(window, out_path), tweaked, work)
+    check("... and F12 still saves the refined still", ok, detail)
     status = quit_with(proc, window, "q")
     check("Q quits the still with status 0", status == 0, status)
 
