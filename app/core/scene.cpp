@@ -129,6 +129,7 @@ void Scene::commit() {
     pending_diagnostics_.clear();
     showing_twin_ = true;
     ++generation_;
+    twin_current_ = generation_;  // it shows the tweak
     return;
   }
   if (!pending_) return;
@@ -172,7 +173,10 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     }
     std::string& failed = failed_twins_[static_cast<int>(scope)];
     if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed) continue;
-    if (twin_ && twin_->scope == scope && twin_->skeleton == lifted.skeleton) return false;
+    if (twin_ && twin_->scope == scope && twin_->skeleton == lifted.skeleton) {
+      twin_current_ = generation_;
+      return false;
+    }
     if (cancelled && cancelled()) return give_up();
     // The exact program built: a twin the driver rejects is only not there.
     Diagnostics rejected;
@@ -212,8 +216,17 @@ std::vector<KnobValue> Scene::knobs() const {
 }
 
 void Scene::commit_twin() {
-  if (pending_twin_) twin_ = std::move(pending_twin_);
+  if (pending_twin_) {
+    twin_ = std::move(pending_twin_);
+    twin_current_ = generation_;
+  }
   pending_twin_.reset();
+}
+
+bool Scene::tweaks_knob(const std::string& name) const {
+  if (!twin_ || twin_->scope != LiftScope::WithConstants || twin_current_ != generation_) return false;
+  return std::any_of(twin_->knobs.begin(), twin_->knobs.end(),
+                     [&](const KnobValue& k) { return k.knob->name == name && is_lifted_name(k.value); });
 }
 
 }  // namespace rm

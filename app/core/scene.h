@@ -92,6 +92,11 @@ class Scene {
   const std::optional<Diagnostic>& constants_twin_rejected() const { return constants_rejected_; }
   // shaderlib's knobs the running program uses, at its values (a tweak's too).
   std::vector<KnobValue> knobs() const;
+  // Whether a new float value in the -D of knob `name` (one the running
+  // program has) is a tweak: the twin is the running program's, lifts
+  // constants, and reads the knob from a lifted literal. The window's
+  // controls then apply the knob while it is dragged.
+  bool tweaks_knob(const std::string& name) const;
   const Source& source() const { return good_source_; }  // of the running program
   // glslang's preprocessor output for the running program's text followed by
   // knob_probes(), line for line (from the same child as its validation).
@@ -143,6 +148,7 @@ class Scene {
   bool showing_twin_ = false;
   std::vector<std::string> shown_literals_;  // the numbers the twin shows while it does, as written
   int twin_checked_ = -1;      // the generation prepare_twin() last looked at
+  int twin_current_ = -1;      // the generation twin_ was last found to be the twin of
   std::string failed_twins_[2];  // by LiftScope, the skeleton whose twin the driver rejected
   std::optional<Diagnostic> constants_rejected_;
   Diagnostics pending_diagnostics_;

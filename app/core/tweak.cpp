@@ -351,4 +351,11 @@ std::string with_literals(const std::string& text, const std::vector<std::string
   return out;
 }
 
+bool is_lifted_name(const std::string& text) {
+  const size_t n = kGlobalPrefix.size();
+  return text.size() > n && text.compare(0, n, kGlobalPrefix) == 0 &&
+         std::all_of(text.begin() + static_cast<std::ptrdiff_t>(n), text.end(),
+                     [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+}
+
 }  // namespace rm

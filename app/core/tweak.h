@@ -63,5 +63,8 @@ Source twin_source(const Source& source, const LiftedLiterals& lifted);
 // `text` from the twin (its preprocessor's output, say) with the name it
 // gives literal i written as literals[i]: what the exact program has there.
 std::string with_literals(const std::string& text, const std::vector<std::string>& literals);
+// Whether `text` is one of the twin's names, alone: a knob whose value it is
+// reads a lifted literal.
+bool is_lifted_name(const std::string& text);
 
 }  // namespace rm

@@ -154,8 +154,10 @@ void uniform_controls(UiModel& model, UiChanges* changes) {
   }
 }
 
-// shaderlib's knobs: each change is a new -D and a recompile, made when the
-// slider is let go; the frame time beside them shows what it cost.
+// shaderlib's knobs: each change is a new -D, made when the slider is let go
+// (a compile), or while it is dragged where the change is a tweak (a float
+// knob once its -D's program has its twins); the frame time beside them
+// shows what it cost.
 void knob_controls(UiModel& model, UiChanges* changes) {
   if (model.knobs.empty()) return;
   if (!ImGui::CollapsingHeader("Accuracy knobs", ImGuiTreeNodeFlags_DefaultOpen)) return;
@@ -183,7 +185,8 @@ void knob_controls(UiModel& model, UiChanges* changes) {
       } else {
         ImGui::SliderFloat(knob.name, &k.edit, knob.min, knob.max, "%g", flags);
       }
-      if (ImGui::IsItemDeactivatedAfterEdit()) changes->knob = {{knob.name, knob_text(knob, k.edit)}};
+      if (k.live ? ImGui::IsItemEdited() : ImGui::IsItemDeactivatedAfterEdit())
+        changes->knob = {{knob.name, knob_text(knob, k.edit)}};
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", knob.what);
     if (k.overridden) {

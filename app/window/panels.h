@@ -39,6 +39,7 @@ struct KnobControl {
   KnobValue value;        // as the compiler sees it now
   bool overridden = false;  // set from the panel (or -D)
   float edit = 0;         // the slider's value while it is dragged
+  bool live = false;      // a change is a tweak, shown at once: applied while dragged, not on release
 };
 
 struct UiModel {

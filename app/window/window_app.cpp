@@ -118,6 +118,7 @@ class WindowApp {
       if (const std::optional<ReloadStatus> built = builder_.finished()) {
         if (std::exchange(twin_build_, false)) {
           if (*built == ReloadStatus::Swapped) project_.commit_twins();
+          if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
           if (options_.verbose)
             std::cerr << "raymarching: twins "
                       << (*built == ReloadStatus::Swapped ? "built" : builder_.cancelled() ? "put off" : "not built")
@@ -374,10 +375,12 @@ class WindowApp {
     for (const Define& d : source_.defines)
       for (const char* preset : quality_presets())
         if (d.name == "RM_QUALITY" && d.value == preset_macro(preset)) model_.preset = preset;
-    for (const KnobValue& k : project_.image().scene->knobs()) {
+    const Scene& scene = *project_.image().scene;
+    for (const KnobValue& k : scene.knobs()) {
       KnobControl control{k, false, 0.0f};
       for (const Define& d : source_.defines) control.overridden |= d.name == k.knob->name;
       control.edit = static_cast<float>(std::atof(k.value.c_str()));
+      control.live = control.overridden && !k.knob->integer && scene.tweaks_knob(k.knob->name);
       model_.knobs.push_back(control);
     }
   }

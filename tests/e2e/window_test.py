@@ -479,25 +479,32 @@ def knob_session():
           wait_for(lambda: all(line in open(err_path).read() for line in ("reload ok generation 2", "-D RM_MAX_STEPS=")),
                    timeout=30), open(err_path).read()[-2000:])
     wait_for(lambda: "presented generation 2" in open(err_path).read(), timeout=30)
-    # A float knob's first change compiles; once the twins of that program
-    # are built, its next is a number edit, shown with no compile.
+    # A float knob's first change compiles, when the slider is let go. Once
+    # the twins of that program are built, its changes are number edits,
+    # shown with no compile while the slider is still dragged.
     x, y = HIT_PIXELS_SLIDER
-    for generation, at in ((3, x), (4, x + 50)):
-        xdotool("mousemove", "--window", window, str(at), str(y))
-        time.sleep(0.5)
-        xdotool("click", "--window", window, 1)
-        wait_for(lambda: f"reload ok generation {generation}" in open(err_path).read(), timeout=30)
-        if generation == 3:
-            wait_for(lambda: "twins built for generation 3" in open(err_path).read(), timeout=30)
-    log = open(err_path).read()
-    check("a float knob's second change is a number edit, with no compile",
-          log.count("-D RM_HIT_PIXELS=") == 2 and "reload ok generation 4 (tweaked" in log, log[-2000:])
-    wait_for(lambda: "presented generation 4" in open(err_path).read(), timeout=30)
+    xdotool("mousemove", "--window", window, str(x), str(y))
+    time.sleep(0.5)
+    xdotool("click", "--window", window, 1)
+    wait_for(lambda: "reload ok generation 3" in open(err_path).read(), timeout=30)
+    wait_for(lambda: "twins built for generation 3" in open(err_path).read(), timeout=30)
+    dragged = len(open(err_path).read())
+    tweaks = lambda: re.findall(r"reload ok generation (\d+) \((\w+)", open(err_path).read()[dragged:])  # noqa: E731
+    xdotool("mousedown", "--window", window, 1)
+    for step in (25, 50):
+        xdotool("mousemove", "--window", window, str(x + step), str(y))
+        wait_for(lambda: len(tweaks()) >= step // 25, timeout=30)
+    while_held = tweaks()
+    xdotool("mouseup", "--window", window, 1)
+    check("a float knob's later changes are number edits, shown while its slider is dragged",
+          len(while_held) >= 2 and all(kind == "tweaked" for _, kind in while_held), open(err_path).read()[dragged:])
+    last = max((int(g) for g, _ in while_held), default=0)
+    wait_for(lambda: f"presented generation {last}" in open(err_path).read(), timeout=30)
     shot = take_screenshot(window, out_path)
     steps = metadata(shot).get("raymarching:define:RM_MAX_STEPS") if shot else None
     check("F12 records the knob", steps is not None and int(steps) < 30, steps)
     hit = metadata(shot).get("raymarching:define:RM_HIT_PIXELS") if shot else None
-    check("... and the float knob, at its second value", hit is not None and 2.0 < float(hit) < 16.0, hit)
+    check("... and the float knob, at its last value", hit is not None and 2.0 < float(hit) < 16.0, hit)
     ok, detail = matches_render(shot, tori, work) if shot else (False, "no shot")
     check("... and render of the shot's command line matches it", ok, detail)
     status = quit_with(proc, window, "q")

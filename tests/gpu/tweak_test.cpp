@@ -308,6 +308,45 @@ TEST_F(TweakGpu, AnOptionsNumberIsATweak) {
   EXPECT_NEAR(render(scene, {16, 8}).pixel(15, 0)[0], 0.75f * 15.5f / 16.0f, 1e-6f);
 }
 
+// The window's controls apply a float knob while it is dragged only where
+// each change is a tweak: the twin is the running program's and reads the
+// knob's -D from a lifted literal.
+TEST_F(TweakGpu, AKnobIsTweakedOnlyByTheRunningProgramsTwin) {
+  const auto path = dir_ / "scene.frag";
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  options.defines = {{"RM_HIT_PIXELS", "0.5"}, {"RM_MAX_STEPS", "40"}};
+  Scene scene(path, options);
+  const std::string text = std::string("#include <rm/march.glsl>\nfloat map(vec3 p) { return length(p) - 1.0; }\n") + kScene;
+  write_file(path, text);
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
+  EXPECT_FALSE(scene.tweaks_knob("RM_HIT_PIXELS")) << "no twin yet";
+  ASSERT_TRUE(scene.prepare_twin());
+  scene.commit_twin();
+  EXPECT_TRUE(scene.tweaks_knob("RM_HIT_PIXELS"));
+  EXPECT_FALSE(scene.tweaks_knob("RM_MAX_STEPS")) << "an int is never lifted";
+  EXPECT_FALSE(scene.tweaks_knob("RM_OMEGA")) << "a knob the program does not use";
+
+  options.defines = {{"RM_HIT_PIXELS", "2.0"}, {"RM_MAX_STEPS", "40"}};
+  scene.set_options(options);
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
+  scene.commit();
+  ASSERT_TRUE(scene.tweaked());
+  EXPECT_TRUE(scene.tweaks_knob("RM_HIT_PIXELS")) << "while a tweak shows";
+
+  write_file(path, text + "float unused_name() { return 1.0; }\n");  // new code: compiled
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  ASSERT_FALSE(scene.tweaked());
+  EXPECT_FALSE(scene.tweaks_knob("RM_HIT_PIXELS")) << "the twin is the last program's";
+  EXPECT_TRUE(scene.prepare_twin());
+  scene.commit_twin();
+  EXPECT_TRUE(scene.tweaks_knob("RM_HIT_PIXELS"));
+
+  write_file(path, text);  // back to a program the cache holds: the twin kept is not its
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  EXPECT_FALSE(scene.tweaks_knob("RM_HIT_PIXELS"));
+}
+
 // Every example's twin draws the exact program's picture: the literals it
 // reads from rm_Tweak are the ones a constant may not need. (The edit
 // appends a 0 to the scene's last decimal number: new text, the same value.)

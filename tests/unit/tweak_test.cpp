@@ -199,6 +199,10 @@ TEST(Tweak, TheTwinsNamesReadAsTheLiteralsWritten) {
   EXPECT_EQ(with_literals("xrm_Tweak_1 rm_Tweak_1x rm_Tweak_ rm_Tweak_3", literals),
             "xrm_Tweak_1 rm_Tweak_1x rm_Tweak_ rm_Tweak_3");
   EXPECT_EQ(with_literals("", literals), "");
+  // A knob whose value is one such name reads a lifted literal.
+  EXPECT_TRUE(is_lifted_name("rm_Tweak_12"));
+  for (const char* text : {"rm_Tweak_", "rm_Tweak_1x", "( rm_Tweak_1 )", "rm_Tweak_1 * 2.0", "0.5", ""})
+    EXPECT_FALSE(is_lifted_name(text)) << text;
 }
 
 TEST(Tweak, EveryMainSetsTheGlobals) {
