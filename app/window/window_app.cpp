@@ -330,13 +330,14 @@ class WindowApp {
     update_title(true);
   }
 
-  // -v: passes whose constants' numbers compile on a save, and why.
+  // -v: passes whose constants' numbers compile when changed, and why.
+  // The driver's error names the constant that needs one.
   void log_constants_compiled() const {
     for (const Pass& pass : project_.passes())
       if (const auto& why = pass.scene->constants_twin_rejected())
         std::cerr << "raymarching: " << pass.file.filename().string()
-                  << ": a number in a const, a global or a #define compiles when saved, not tweaked, as another "
-                     "constant needs it: "
+                  << ": a number in a const, a global, a #define or a -D compiles when changed, not tweaked, as "
+                     "another constant needs it: "
                   << why->str() << '\n';
   }
 
