@@ -58,6 +58,17 @@ class TweakGpu : public test::EglTest {
     scene.commit_twin();
   }
 
+  // A scene that includes shaderlib's marching loop, so that its knobs are used.
+  static std::string marched(const std::string& image) {
+    return "#include <rm/march.glsl>\nfloat map(vec3 p) { return length(p) - 1.0; }\n" + image;
+  }
+  static SourceOptions with_shaderlib(std::vector<Define> defines) {
+    SourceOptions options;
+    options.shaderlib_dir = shaderlib_dir();
+    options.defines = std::move(defines);
+    return options;
+  }
+
   Renderer renderer_;
   ChannelInputs channels_{};
   TempDir dir_;
@@ -285,13 +296,9 @@ TEST_F(TweakGpu, AKnobsNumberShowsInTheKnobsWithTheTweak) {
 // and the second change of a knob shows without a compile.
 TEST_F(TweakGpu, AnOptionsNumberIsATweak) {
   const auto path = dir_ / "scene.frag";
-  SourceOptions options;
-  options.shaderlib_dir = shaderlib_dir();
-  options.defines = {{"GAIN", "0.25"}, {"RM_HIT_PIXELS", "0.5"}};
+  SourceOptions options = with_shaderlib({{"GAIN", "0.25"}, {"RM_HIT_PIXELS", "0.5"}});
   Scene scene(path, options);
-  const std::string text = "#include <rm/march.glsl>\nfloat map(vec3 p) { return length(p) - 1.0; }\n" +
-                           with(kScene, "uv.x * 0.25", "uv.x * GAIN");
-  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path, text));
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path, marched(with(kScene, "uv.x * 0.25", "uv.x * GAIN"))));
   options.defines = {{"GAIN", "0.75"}, {"RM_HIT_PIXELS", "2.0"}};
   scene.set_options(options);
   ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped);
@@ -313,11 +320,9 @@ TEST_F(TweakGpu, AnOptionsNumberIsATweak) {
 // knob's -D from a lifted literal.
 TEST_F(TweakGpu, AKnobIsTweakedOnlyByTheRunningProgramsTwin) {
   const auto path = dir_ / "scene.frag";
-  SourceOptions options;
-  options.shaderlib_dir = shaderlib_dir();
-  options.defines = {{"RM_HIT_PIXELS", "0.5"}, {"RM_MAX_STEPS", "40"}};
+  SourceOptions options = with_shaderlib({{"RM_HIT_PIXELS", "0.5"}, {"RM_MAX_STEPS", "40"}});
   Scene scene(path, options);
-  const std::string text = std::string("#include <rm/march.glsl>\nfloat map(vec3 p) { return length(p) - 1.0; }\n") + kScene;
+  const std::string text = marched(kScene);
   write_file(path, text);
   ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
   EXPECT_FALSE(scene.tweaks_knob("RM_HIT_PIXELS")) << "no twin yet";
