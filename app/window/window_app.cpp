@@ -178,12 +178,12 @@ class WindowApp {
   void on_scroll(double x, double y) { ui_.on_scroll(x, y); ui_event(); }
   void on_cursor_enter(bool entered) { ui_.on_cursor_enter(entered); ui_event(); }
   void on_focus(bool focused) { ui_.on_focus(focused); ui_event(); }
-  // Uncovered windows: draw again.
-  void on_refresh() { dirty_ = true; }
+  // An uncovered window: its contents again.
+  void on_refresh() { show_again(); }
   // Nothing is drawn while minimised, animated or not.
   void on_iconify(bool iconified) {
     iconified_ = iconified;
-    dirty_ = true;
+    if (!iconified) show_again();
     if (options_.verbose) std::cerr << "raymarching: " << (iconified ? "minimised" : "restored") << '\n';
   }
   // A minimised window may report 0x0; frame() then draws nothing.
@@ -307,11 +307,10 @@ class WindowApp {
       too_slow_ = false;
       last_swap_ns_ = steady_ns();
     }
-    // A new program is drawn. A failed save changes no picture: the kept
-    // one is shown again under the stale badge, not drawn and refined anew
-    // (a picture that went straight to the window is not kept).
-    if (status == ReloadStatus::Swapped ? !same_picture : !picture_.has_picture()) dirty_ = true;
-    else if (status == ReloadStatus::Failed) ui_frames_ = std::max(ui_frames_, 1);
+    // A new program is drawn. A failed save changes no picture: it is shown
+    // again under the stale badge.
+    if (status == ReloadStatus::Failed) show_again();
+    else if (!same_picture) dirty_ = true;
     ui_event();
     if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
     if (options_.verbose) {
@@ -328,6 +327,14 @@ class WindowApp {
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';
     }
     update_title(true);
+  }
+
+  // The window shows what it showed again (uncovered, restored, or with the
+  // stale badge now): the kept picture is presented again, with its
+  // samples; only one that went straight to the window is drawn again.
+  void show_again() {
+    if (picture_.has_picture()) ui_frames_ = std::max(ui_frames_, 1);
+    else dirty_ = true;
   }
 
   // -v: passes whose constants' numbers compile when changed, and why.

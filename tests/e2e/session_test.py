@@ -13,8 +13,10 @@ Run as: xvfb-run -a python3 session_test.py RAYMARCHING [--reloads N] [--no-rss]
 3. The scene deleted for 5 s and then recreated comes back.
 4. An unwritable screenshot directory gets a one-line error while the session
    goes on, and shots work again once it is writable.
-5. Minimised (through twm, when installed) and resized to the smallest size X
-   allows, then restored: no GL error, and the picture is right again.
+5. A still minimised and restored (through twm, when installed) is shown
+   again as it was kept, not drawn again.
+6. Minimised and resized to the smallest size X allows, then restored: no
+   GL error, and the picture is right again.
 Throughout: no GL error, sanitizer report or crash.
 --no-rss skips the RSS bound (sanitizer builds keep freed memory in
 quarantine, so their RSS says nothing about leaks).
@@ -282,9 +284,37 @@ def cpu_over(s, seconds):
     return cpu_seconds(s.proc.pid) - start
 
 
+def refined(s, since):
+    """True once the picture has all its samples after stderr offset `since`."""
+    return re.search(r"raymarching: sample (\d+) of \1 ", s.stderr()[since:])
+
+
+def restore_still(s):
+    """A still minimised and restored is shown again from the kept picture,
+    not drawn and refined anew."""
+    if not shutil.which("twm"):
+        return
+    since = len(s.stderr())
+    save_by_rename(s.scene, solid((90, 60, 30), "a still to minimise", "still"))  # compiled, not a tweak
+    wait_for(lambda: refined(s, since))
+    since = len(s.stderr())
+    xdotool("windowminimize", "--sync", s.window)
+    wait_for(lambda: "raymarching: minimised" in s.stderr()[since:], timeout=5)
+    xdotool("windowmap", "--sync", s.window)
+    xdotool("windowfocus", "--sync", s.window)
+    wait_for(lambda: "raymarching: restored" in s.stderr()[since:], timeout=5)
+    time.sleep(1.0)
+    later = s.stderr()[since:]
+    check("a still restored is shown again, not drawn and refined anew",
+          "restored" in later and not re.search(r"raymarching: (picture|sample) ", later), later)
+    ok, colour = s.shows((90, 60, 30))
+    check("... and it is on screen", ok, colour)
+
+
 def minimise_and_resize(s):
+    since = len(s.stderr())
     save_by_rename(s.scene, ANIMATED)
-    wait_for(lambda: "reload ok" in s.stderr().split("recreated")[-1])
+    wait_for(lambda: "reload ok" in s.stderr()[since:])
     if shutil.which("twm"):
         shown = cpu_over(s, 2.0)
         xdotool("windowminimize", "--sync", s.window)
@@ -331,7 +361,7 @@ def main():
         check("first program presented", wait_for(lambda: "presented generation 1" in s.stderr(), timeout=40))
         for step in (lambda: reload_many(s, args.reloads, not args.no_rss, args.trace), lambda: autosave_storm(s),
                      lambda: delete_and_recreate(s), lambda: unwritable_shot_dir(s),
-                     lambda: minimise_and_resize(s)):
+                     lambda: restore_still(s), lambda: minimise_and_resize(s)):
             if not s.alive():
                 break
             step()
