@@ -413,10 +413,7 @@ class WindowApp {
     }
     if (c.seek) clock_.seek(*c.seek);
     if (c.speed) clock_.set_speed(*c.speed);
-    if (c.toggle_pause || c.restart || c.step || c.seek || c.speed) {
-      dirty_ = true;
-      update_title(true);
-    }
+    if (c.toggle_pause || c.restart || c.step || c.seek || c.speed) clock_changed();
     if (c.dismiss_warnings) model_.warnings.clear();
     if (c.knob) set_define(c.knob->first, c.knob->second);
     if (c.preset) set_define("RM_QUALITY", c.preset->empty() ? "" : preset_macro(*c.preset));
@@ -426,6 +423,19 @@ class WindowApp {
     clock_.restart();
     graph_.restart();
     dirty_ = true;
+  }
+
+  // The clock was paused, stepped, sought or sped: a picture that reads it
+  // (or a feedback project's) is drawn again; any other would be the same.
+  void clock_changed() {
+    if (use_.time || project_.has_feedback()) dirty_ = true;
+    update_title(true);
+  }
+
+  void step_paused(double seconds) {
+    if (!clock_.paused()) return;
+    clock_.step(seconds);
+    clock_changed();
   }
 
   // One iteration's picture: the scene drawn again when `redraw`, then the
@@ -1089,8 +1099,8 @@ void WindowApp::on_key(int key, int scancode, int action, int mods) {
     case GLFW_KEY_F12: if (press) shot_requested_ = true; break;
     case GLFW_KEY_SPACE: if (press) clock_.set_paused(!clock_.paused()); update_title(true); break;
     case GLFW_KEY_R: if (press) restart(); break;
-    case GLFW_KEY_LEFT: if (clock_.paused()) clock_.step(-1.0 / 60.0); dirty_ = true; break;
-    case GLFW_KEY_RIGHT: if (clock_.paused()) clock_.step(1.0 / 60.0); dirty_ = true; break;
+    case GLFW_KEY_LEFT: step_paused(-1.0 / 60.0); break;
+    case GLFW_KEY_RIGHT: step_paused(1.0 / 60.0); break;
     case GLFW_KEY_F9: if (press) toggle_take(); break;
     case GLFW_KEY_F11: if (press) toggle_fullscreen(); break;
     case GLFW_KEY_V: if (press) cycle_view(); break;

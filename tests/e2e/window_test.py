@@ -8,7 +8,9 @@ rename shows up; a broken edit, and one that includes a FIFO, keeps the last
 good frame and reports file:line; the fix reloads; a number edit shows at
 once in the scene's twin, and then in its exact program, both as `render`
 draws the edited scene; Q quits with status 0. A number edit of a still is
-refined in its twin, and its exact program does not draw it again. A second window shows the
+refined in its twin, and its exact program does not draw it again; nor do a
+pause, clock steps or a broken save, which shows the kept still under the
+stale badge. Right steps a paused animated scene, drawn again. A second window shows the
 image a scene names with #pragma channel0 when no --channel0 is given. A
 project of three passes: a drag paints into a feedback buffer and F12 shows
 it, a key reaches the shader, and a number edit of one buffer tweaks and
@@ -17,8 +19,8 @@ The interface (Dear ImGui), compared on the X screen itself (xwd) with F12:
 hidden it is exactly F12; a broken save puts text over the kept picture and
 the fix takes it away; a slider drag changes the picture, not iMouse, and
 `render --set` of the shot matches; the value survives a reload; the Pause
-button pauses; a knob moved in tori's panel rebuilds it with the -D (a
-float knob's second move is a number edit, no compile), which
+button pauses; a knob moved in tori's panel rebuilds it with the -D (then
+a float knob's drag is number edits while it is held, no compile), which
 F12 records for `render`; a warning shows in a smaller line until dismissed.
 Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
@@ -620,6 +622,19 @@ def tweak_at_rest():
     later = log()[before:]
     check("a save of comments and blanks only neither rebuilds nor redraws the still",
           "building generation" in later and not re.search(r"raymarching: (reload ok|picture|sample) ", later), later)
+    # Nor does the clock, which the still does not read: paused, stepped and
+    # run again, it is not drawn again. (The title shows the pause, so the
+    # keys after it have arrived once it is gone.)
+    title = lambda: xdotool("getwindowname", window)  # noqa: E731
+    xdotool("key", "--window", window, "space")
+    paused = wait_for(lambda: "(paused)" in title(), timeout=5)
+    before = len(log())
+    xdotool("key", "--window", window, "Right", "Right", "Left", "space")
+    running = wait_for(lambda: "(paused)" not in title(), timeout=5)
+    time.sleep(0.5)
+    later = log()[before:]
+    check("pausing and stepping the clock of a still that reads none draws nothing",
+          paused and running and not re.search(r"raymarching: (picture|sample) ", later), (paused, running, later))
     # A broken save changes no picture either: the kept still is shown again
     # under the stale badge (it used to be drawn again and refined anew).
     before = len(log())
@@ -639,10 +654,39 @@ def tweak_at_rest():
     check("Q quits the still with status 0", status == 0, status)
 
 
+def step_paused_clock():
+    """Right steps a paused scene that reads the clock by a frame: it is drawn
+    again at the new time, which F12 records."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-step-")
+    scene = os.path.join(work, "animated.frag")
+    with open(scene, "w") as f:
+        f.write(ANIMATED)
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work)
+    window = first_frame_window(proc, "animated.frag", err_path)
+    if not window:
+        check("an animated scene opens in the window", False, open(err_path).read())
+        return
+    xdotool("key", "--window", window, "space")
+    wait_for(lambda: "(paused)" in xdotool("getwindowname", window), timeout=5)
+    time.sleep(0.5)
+    paused = metadata(take_screenshot(window, out_path)).get("raymarching:iTime")
+    before = len(open(err_path).read())
+    xdotool("key", "--window", window, "Right")
+    drawn = wait_for(lambda: "raymarching: picture" in open(err_path).read()[before:], timeout=10)
+    stepped = metadata(take_screenshot(window, out_path)).get("raymarching:iTime")
+    check("Right steps a paused animated scene by a frame, drawn again",
+          drawn and None not in (paused, stepped) and abs(float(stepped) - float(paused) - 1 / 60) < 1e-3,
+          (paused, stepped))
+    status = quit_with(proc, window, "q")
+    check("Q quits the animated scene with status 0", status == 0, status)
+
+
 if __name__ == "__main__":
     try:
         main()
         tweak_at_rest()
+        step_paused_clock()
         scene_default_channel()
         project_session()
         interface_session()
