@@ -582,20 +582,29 @@ STILL = """void mainImage(out vec4 c, in vec2 f) {
 """
 
 
+def small_window(source, name):
+    """`source` saved as `name` in a new directory and opened in a 64x36
+    window with -v, shots going there: (work, scene, stderr path, stdout
+    path, process, window); window None (and a failed check) when none came."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-small-")
+    scene = os.path.join(work, name)
+    with open(scene, "w") as f:
+        f.write(source)
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work)
+    window = first_frame_window(proc, name, err_path)
+    if not window:
+        check(f"{name} opens in the window", False, open(err_path).read())
+    return work, scene, err_path, out_path, proc, window
+
+
 def tweak_at_rest():
     """A number edit of a still: the twin's picture is refined to its
     samples, and the exact program that follows neither draws nor refines
     it again; F12 then matches `render` of the edited scene. A save of
     comments only then builds and draws nothing."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-still-")
-    scene = os.path.join(work, "still.frag")
-    with open(scene, "w") as f:
-        f.write(STILL)
-    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
-    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work)
-    window = first_frame_window(proc, "still.frag", err_path)
+    work, scene, err_path, out_path, proc, window = small_window(STILL, "still.frag")
     if not window:
-        check("a still opens in the window", False, open(err_path).read())
         return
     log = lambda: open(err_path).read()  # noqa: E731
     wait_for(lambda: "twins built for generation 1 " in log(), timeout=20)
@@ -657,15 +666,8 @@ def tweak_at_rest():
 def step_paused_clock():
     """Right steps a paused scene that reads the clock by a frame: it is drawn
     again at the new time, which F12 records."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-step-")
-    scene = os.path.join(work, "animated.frag")
-    with open(scene, "w") as f:
-        f.write(ANIMATED)
-    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
-    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work)
-    window = first_frame_window(proc, "animated.frag", err_path)
+    _, _, err_path, out_path, proc, window = small_window(ANIMATED, "animated.frag")
     if not window:
-        check("an animated scene opens in the window", False, open(err_path).read())
         return
     xdotool("key", "--window", window, "space")
     wait_for(lambda: "(paused)" in xdotool("getwindowname", window), timeout=5)
