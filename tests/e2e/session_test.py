@@ -170,8 +170,8 @@ def census_at_rest(s, note):
     print the count."""
     def rested():
         log = s.stderr()
-        since = log[log.rfind("raymarching: reload ok"):]
-        return "twins built for generation" in since and re.search(r"sample (\d+) of \1 ", since)
+        since = log.rfind("raymarching: reload ok")
+        return "twins built for generation" in log[since:] and refined(s, since)
 
     if not wait_for(rested, timeout=60) or not saved(s, broken(note)):
         return None
