@@ -185,6 +185,7 @@ void knob_controls(UiModel& model, UiChanges* changes) {
       } else {
         ImGui::SliderFloat(knob.name, &k.edit, knob.min, knob.max, "%g", flags);
       }
+      k.held = ImGui::IsItemActive();
       if (k.live ? ImGui::IsItemEdited() : ImGui::IsItemDeactivatedAfterEdit())
         changes->knob = {{knob.name, knob_text(knob, k.edit)}};
     }

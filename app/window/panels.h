@@ -40,6 +40,7 @@ struct KnobControl {
   bool overridden = false;  // set from the panel (or -D)
   float edit = 0;         // the slider's value while it is dragged
   bool live = false;      // a change is a tweak, shown at once: applied while dragged, not on release
+  bool held = false;      // its slider is being dragged: `edit` is the person's, not the program's
 };
 
 struct UiModel {

@@ -378,6 +378,7 @@ class WindowApp {
 
   // shaderlib's knobs this scene uses, as its preprocessor sees them now.
   void take_knobs() {
+    const std::vector<KnobControl> before = std::move(model_.knobs);
     model_.knobs.clear();
     model_.preset.clear();
     for (const Define& d : source_.defines)
@@ -389,6 +390,13 @@ class WindowApp {
       for (const Define& d : source_.defines) control.overridden |= d.name == k.knob->name;
       control.edit = static_cast<float>(std::atof(k.value.c_str()));
       control.live = control.overridden && !k.knob->integer && scene.tweaks_knob(k.knob->name);
+      // A slider held while the knobs are read again (twins built mid-drag)
+      // keeps the value it was dragged to: its release applies that one.
+      for (const KnobControl& b : before)
+        if (b.held && b.value.knob == k.knob) {
+          control.edit = b.edit;
+          control.held = true;
+        }
       model_.knobs.push_back(control);
     }
   }

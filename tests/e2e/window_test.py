@@ -474,28 +474,42 @@ def knob_session():
     if not window:
         check("tori opens with its controls", False, open(err_path).read())
         return
+    # Paused, the still is drawn only when something changes, and so is the
+    # panel: a held slider is not drawn again until the mouse moves.
+    xdotool("key", "--window", window, "space")
     xdotool("mousemove", "--window", window, *MAX_STEPS_SLIDER)
     time.sleep(0.5)
     xdotool("click", "--window", window, 1)
     check("letting go of a knob's slider rebuilds the scene with its -D",
           wait_for(lambda: all(line in open(err_path).read() for line in ("reload ok generation 2", "-D RM_MAX_STEPS=")),
                    timeout=30), open(err_path).read()[-2000:])
-    wait_for(lambda: "presented generation 2" in open(err_path).read(), timeout=30)
-    # A float knob's first change compiles, when the slider is let go. Once
-    # the twins of that program are built, its changes are number edits,
-    # shown with no compile while the slider is still dragged.
+    # A float knob's first change compiles, when the slider is let go. Held
+    # while the program's twins are built (a second after its build), the
+    # slider keeps the value it was dragged to, and its release applies it.
     x, y = HIT_PIXELS_SLIDER
     xdotool("mousemove", "--window", window, str(x), str(y))
-    time.sleep(0.5)
-    xdotool("click", "--window", window, 1)
+    held = len(open(err_path).read())
+    xdotool("mousedown", "--window", window, 1)
+    xdotool("mousemove", "--window", window, str(x + 25), str(y))
+    wait_for(lambda: "twins built for generation 2" in open(err_path).read(), timeout=30)
+    xdotool("mouseup", "--window", window, 1)
     wait_for(lambda: "reload ok generation 3" in open(err_path).read(), timeout=30)
+    log = open(err_path).read()
+    twins_while_held = log.find("twins built for generation 2", held) >= 0
+    applied = re.findall(r"-D RM_HIT_PIXELS=(\S+)", log)
+    check("a knob's slider held while twins are built applies where it was dragged to",
+          twins_while_held and applied and float(applied[-1]) > 1.5, (twins_while_held, applied))
+    # Once the twins of that program are built, its changes are number
+    # edits, shown with no compile while the slider is still dragged.
+    xdotool("mousemove", "--window", window, str(x), str(y))
     wait_for(lambda: "twins built for generation 3" in open(err_path).read(), timeout=30)
     dragged = len(open(err_path).read())
     tweaks = lambda: re.findall(r"reload ok generation (\d+) \((\w+)", open(err_path).read()[dragged:])  # noqa: E731
     xdotool("mousedown", "--window", window, 1)
-    for step in (25, 50):
+    # Not back to x + 25: the program of that value is cached, and is used.
+    for n, step in enumerate((15, 50), 1):
         xdotool("mousemove", "--window", window, str(x + step), str(y))
-        wait_for(lambda: len(tweaks()) >= step // 25, timeout=30)
+        wait_for(lambda: len(tweaks()) >= n, timeout=30)
     while_held = tweaks()
     xdotool("mouseup", "--window", window, 1)
     check("a float knob's later changes are number edits, shown while its slider is dragged",
