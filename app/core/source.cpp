@@ -279,7 +279,8 @@ class Preprocessor {
   }
 
   // Shadertoy's HW_PERFORMANCE: 1, as on a desktop, unless a -D sets it (0 is
-  // what a phone gets; shaders use it to choose their antialiasing).
+  // what a phone gets; shaders use it to choose their antialiasing). The
+  // window gives a renderer on the CPU 0 by a -D (core/hw_performance.h).
   std::string hw_performance_define() const {
     return defined_on_command_line("HW_PERFORMANCE") ? std::string() : "#define HW_PERFORMANCE 1\n";
   }

@@ -42,6 +42,7 @@ struct Origin {
 struct Define {
   std::string name;
   std::string value;  // empty means "1", as -DNAME does in a compiler
+  bool operator==(const Define&) const = default;
 };
 
 struct SourceOptions {

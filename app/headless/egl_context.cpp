@@ -74,9 +74,4 @@ EglContext::~EglContext() {
   eglTerminate(display_);
 }
 
-std::string EglContext::renderer() const {
-  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  return name ? name : "unknown";
-}
-
 }  // namespace rm

@@ -22,6 +22,7 @@
 #include "core/channels.h"
 #include "core/frame_budget.h"
 #include "core/frame_graph.h"
+#include "core/hw_performance.h"
 #include "core/project.h"
 #include "core/gl_census.h"
 #include "core/gl_debug.h"
@@ -1153,7 +1154,16 @@ int run_window(const WindowOptions& options) {
   glfwSwapInterval(1);  // capped by vsync
   int status = kExitOk;
   {
-    WindowApp app(options, window);
+    WindowOptions for_this = options;
+    const std::string gl_renderer = current_renderer();
+    for_this.source = for_renderer(options.source, gl_renderer);
+    if (options.verbose)
+      std::cerr << "raymarching: renderer " << gl_renderer
+                << (for_this.source.defines.size() > options.source.defines.size()
+                        ? ", on the CPU: -D HW_PERFORMANCE=0 (-D HW_PERFORMANCE=1 draws what a desktop GPU gets)"
+                        : "")
+                << '\n';
+    WindowApp app(for_this, window);
     glfwSetWindowUserPointer(window, &app);
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) { app_of(w)->on_mouse_button(button, action, mods); });
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { app_of(w)->on_cursor(x, y); });

@@ -82,6 +82,23 @@ TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
   EXPECT_EQ(r.err, "");
 }
 
+// render draws a shader's HW_PERFORMANCE == 1 branch on any renderer (the
+// window gives one on the CPU 0): frames of a sequence split across
+// machines must match, and an offline picture may take its time. A -D wins.
+TEST_F(Cli, RenderGivesHwPerformanceOneOnAnyRenderer) {
+  write_file(dir_ / "hw.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(float(HW_PERFORMANCE), 0.5, 0.0, 1.0); }\n");
+  const std::string scene = (dir_ / "hw.frag").string(), exr = (dir_ / "hw.exr").string();
+  const auto red = [&](const std::string& options) {
+    const test::Outcome r = run("render " + scene + " -o " + exr + " --size 2x2" + options);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return test::read_pixels(exr).at(0);
+  };
+  EXPECT_EQ(red(""), 1.0f);
+  const std::string command = OIIO::ImageInput::open(exr)->spec().get_string_attribute("ImageDescription");
+  EXPECT_EQ(command.find("HW_PERFORMANCE"), std::string::npos) << command;
+  EXPECT_EQ(red(" -D HW_PERFORMANCE=0"), 0.0f);
+}
+
 // render --set gives the shader's own uniforms their values; the picture's
 // metadata records every value, so its own command line renders it again.
 TEST_F(Cli, RenderSetGivesUniformsAndTheMetadataReproducesThem) {

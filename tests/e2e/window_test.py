@@ -123,6 +123,10 @@ def main():
           re.fullmatch(r"scene-\d{8}-\d{6}-\d{3}\.png", os.path.basename(shot)), shot)
     check("F12 records the shader's own uniforms", metadata(shot).get("raymarching:uniform:gain") == "0.75",
           metadata(shot))
+    # Xvfb's GL is llvmpipe: on the CPU, a shader gets a phone's HW_PERFORMANCE.
+    check("on llvmpipe the window defines HW_PERFORMANCE 0, and F12 records it",
+          metadata(shot).get("raymarching:define:HW_PERFORMANCE") == "0" and
+          "renderer llvmpipe" in stderr() and "-D HW_PERFORMANCE=0" in stderr(), metadata(shot))
     mouse = [float(v) for v in metadata(shot).get("raymarching:iMouse", "0,0,0,0").split(",")]
     check("drag sets iMouse (xy at release, z < 0 after release, press at zw)",
           mouse == [200.0, SIZE[1] - 120.0, -100.0, -(SIZE[1] - 50.0)], mouse)
