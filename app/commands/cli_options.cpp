@@ -136,6 +136,8 @@ void require_readable_file(const fs::path& path) {
 void SourceFlags::add_to(CLI::App& app) {
     app.add_option("-I", includes, "Add DIR to the #include search path")->type_name("DIR")->allow_extra_args(false);
     app.add_option("-D", defines, "Define macro NAME (as VALUE, default 1) after #version")->type_name("NAME[=VALUE]")->allow_extra_args(false);
+    app.add_option("-U", undefines, "Undefine macro NAME: the scene's own #define of it is read as a blank line")
+        ->type_name("NAME")->allow_extra_args(false);
     app.add_option("--quality", quality, "shaderlib preset: the same as -D RM_QUALITY=RM_<NAME>")
         ->check(CLI::IsMember(std::vector<std::string>(quality_presets().begin(), quality_presets().end())));
 }
@@ -144,15 +146,22 @@ SourceOptions SourceFlags::source() const {
     SourceOptions out;
     out.shaderlib_dir = shaderlib_dir();
     for (const auto& dir : includes) out.include_dirs.emplace_back(dir);
+    const auto is_name = [](const std::string& name) {
+      return !name.empty() && lexing::is_word_start(name[0]) && std::all_of(name.begin(), name.end(), lexing::is_word_char);
+    };
     for (const auto& d : defines) {
       const auto eq = d.find('=');
       Define def{d.substr(0, eq), eq == std::string::npos ? "" : d.substr(eq + 1)};
-      const bool is_name = !def.name.empty() && lexing::is_word_start(def.name[0]) &&
-                           std::all_of(def.name.begin(), def.name.end(), lexing::is_word_char);
-      if (!is_name) throw UsageError{"-D '" + d + "': '" + def.name + "' is not a macro name"};
+      if (!is_name(def.name)) throw UsageError{"-D '" + d + "': '" + def.name + "' is not a macro name"};
       out.defines.push_back(def);
     }
     if (!quality.empty()) out.defines.push_back({"RM_QUALITY", preset_macro(quality)});
+    for (const auto& name : undefines) {
+      if (!is_name(name)) throw UsageError{"-U '" + name + "': not a macro name"};
+      for (const Define& d : out.defines)
+        if (d.name == name) throw UsageError{"-U " + name + ": -D gives " + name + " a value; give one of them"};
+      out.undefines.push_back(name);
+    }
     return out;
 }
 

@@ -37,10 +37,12 @@ void require_readable_file(const std::filesystem::path& path);
 // (exit 2, with its line and column) and each stand-in is one warning.
 void check_project_file(const std::filesystem::path& path, const std::filesystem::path& media_dir);
 
-// -I DIR, -D NAME[=VALUE] and --quality, as a C compiler takes the first two.
+// -I DIR, -D NAME[=VALUE], -U NAME and --quality, as a C compiler takes the
+// first three.
 struct SourceFlags {
   std::vector<std::string> includes;
   std::vector<std::string> defines;
+  std::vector<std::string> undefines;
   std::string quality;
 
   void add_to(CLI::App& app);

@@ -83,6 +83,13 @@ void RenderCommand::take_into(RenderRequest& req) const {
   req.source.defines = take->defines_at(0);
   for (const Define& d : from_command_line.defines)
     req.source.defines = with_define(req.source.defines, d.name, d.value.empty() ? "1" : d.value);
+  // The take's -U's, and the command line's, which also take back the take's -D of the name.
+  req.source.undefines = take->undefines;
+  for (const std::string& name : from_command_line.undefines) {
+    req.source.defines = with_define(req.source.defines, name, "");
+    if (std::find(req.source.undefines.begin(), req.source.undefines.end(), name) == req.source.undefines.end())
+      req.source.undefines.push_back(name);
+  }
   if (command_->count("--size") == 0) req.size = take->frames.front().size;
   // Without --fps, the take's own frames; a video of them plays at their mean rate.
   req.take_fps = command_->count("--fps") > 0 ? fps_ : 0.0;

@@ -216,6 +216,10 @@ Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, cons
     command += " -D " + d.name + "=" + value;
     out.emplace_back("raymarching:define:" + d.name, value);
   }
+  for (const std::string& name : source.undefines) {
+    command += " -U " + name;
+    out.emplace_back("raymarching:undefine:" + name, "-U " + name);
+  }
   command += " --size " + std::to_string(static_cast<int>(in.resolution.x)) + "x" +
              std::to_string(static_cast<int>(in.resolution.y));
   for (const HostInput& input : host_inputs()) {

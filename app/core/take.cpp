@@ -135,6 +135,7 @@ std::optional<std::filesystem::path> write_take(const std::filesystem::path& pat
   json includes = json::array();
   for (const auto& dir : take.include_dirs) includes.push_back(stored_path(dir, folder));
   head["include_dirs"] = includes;
+  if (!take.undefines.empty()) head["undefines"] = take.undefines;
   head["date"] = take.date;
   json events = json::array();
   for (const TakeEvent& e : take.events) {
@@ -199,6 +200,7 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
         take.channels[c] = resolved_path(stored, folder);
     for (const auto& dir : field<json>(doc, "include_dirs", json::array()))
       take.include_dirs.push_back(resolved_path(dir.get<std::string>(), folder));
+    take.undefines = field<std::vector<std::string>>(doc, "undefines", {});
     take.date = field<std::string>(doc, "date", "");
     for (const auto& e : field<json>(doc, "events", json::array())) {
       TakeEvent event;

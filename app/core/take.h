@@ -50,6 +50,7 @@ struct Take {
   std::filesystem::path media;
   std::array<std::filesystem::path, 4> channels;  // the window's --channelN (empty: none given)
   std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> undefines;  // the -U list (no control changes it)
   std::string date;    // iDate of frame 0, as `render --date` reads it
   std::vector<TakeFrame> frames;
   std::vector<TakeEvent> events;  // events[0] is frame 0's: the defines and sources it started with

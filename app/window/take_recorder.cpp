@@ -15,6 +15,7 @@ void TakeRecorder::start(const std::filesystem::path& scene, const std::filesyst
   for (size_t c = 0; c < 4; ++c)
     if (!channels[c].empty()) take_->channels[c] = std::filesystem::absolute(channels[c]).lexically_normal();
   take_->include_dirs = source.include_dirs;
+  take_->undefines = source.undefines;
   take_->events.push_back({0, source.defines, pass_hashes(project)});
   keys_.clear();
 }

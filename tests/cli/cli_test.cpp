@@ -99,6 +99,36 @@ TEST_F(Cli, RenderGivesHwPerformanceOneOnAnyRenderer) {
   EXPECT_EQ(red(" -D HW_PERFORMANCE=0"), 0.0f);
 }
 
+// -U NAME, as a compiler's: the scene's own #define of NAME is read as a
+// blank line (a shader's unconditional `#define AA` turned off). The
+// picture's command line records it; a bad name, or a -D of the same name,
+// is one line and exit 2.
+TEST_F(Cli, RenderUndefinesAScenesOwnMacroAndRecordsIt) {
+  write_file(dir_ / "aa.frag", "#define AA\nvoid mainImage(out vec4 c, in vec2 f) {\n#ifdef AA\n  c = vec4(1.0);\n"
+                               "#else\n  c = vec4(0.5);\n#endif\n}\n");
+  const std::string scene = (dir_ / "aa.frag").string(), exr = (dir_ / "aa.exr").string();
+  const auto red = [&](const std::string& options) {
+    const test::Outcome r = run("render " + scene + " -o " + exr + " --size 2x2" + options);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return test::read_pixels(exr).at(0);
+  };
+  EXPECT_EQ(red(""), 1.0f);
+  EXPECT_EQ(red(" -U AA"), 0.5f);
+  const std::string command = OIIO::ImageInput::open(exr)->spec().get_string_attribute("ImageDescription");
+  EXPECT_NE(command.find(" -U AA"), std::string::npos) << command;
+  const test::Outcome again = run(command.substr(std::string("raymarching ").size()) + " -o " + exr);
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(test::read_pixels(exr).at(0), 0.5f);
+  EXPECT_EQ(run("check " + scene + " -U AA").status, 0);
+
+  test::Outcome bad = run("render " + scene + " -o " + exr + " -U 2x");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "raymarching: error: -U '2x': not a macro name\n");
+  bad = run("render " + scene + " -o " + exr + " -D AA=2 -U AA");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "raymarching: error: -U AA: -D gives AA a value; give one of them\n");
+}
+
 // render --set gives the shader's own uniforms their values; the picture's
 // metadata records every value, so its own command line renders it again.
 TEST_F(Cli, RenderSetGivesUniformsAndTheMetadataReproducesThem) {

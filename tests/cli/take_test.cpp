@@ -78,6 +78,22 @@ TEST_F(Take, DrawsEveryRecordedFrameWithItsInputs) {
   EXPECT_TRUE(pixel("a_%d.exr", 3).empty()) << "one frame per recorded frame";
 }
 
+// A take recorded with -U replays without the scene's own #define of it;
+// the command line's -D of the name gives it back.
+TEST_F(Take, ReplaysWithoutTheMacrosItWasRecordedWithout) {
+  write_file(dir_ / "aa.frag", "#define AA\nvoid mainImage(out vec4 c, in vec2 f) {\n#ifdef AA\n  c = vec4(1.0);\n"
+                               "#else\n  c = vec4(0.0);\n#endif\n}\n");
+  std::string take = kTake;
+  take.replace(take.find("\"scene.frag\""), 12, "\"aa.frag\"");
+  take.replace(take.find("\"include_dirs\""), 0, "\"undefines\": [\"AA\"], ");
+  write_file(dir_ / "t.take.json", take);
+  ASSERT_EQ(render("-o " + (dir_ / "u_%d.exr").string()).status, 0);
+  expect_pixel(pixel("u_%d.exr", 0), {0.0f, 0.0f, 0.0f, 0.0f});
+  const test::Outcome r = render("-o " + (dir_ / "d_%d.exr").string() + " -D AA");
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_pixel(pixel("d_%d.exr", 0), {1.0f, 1.0f, 1.0f, 1.0f});
+}
+
 TEST_F(Take, AtAnotherRateInterpolatesBetweenTheRecordedFrames) {
   const test::Outcome r = render("-o " + (dir_ / "b_%d.exr").string() + " --size 8x4 --fps 20");
   ASSERT_EQ(r.status, 0) << r.err;

@@ -28,14 +28,19 @@ from harness import (check, first_frame_window, mean_colour, metadata, open_wind
 BINARY = os.path.abspath(sys.argv[1])
 
 # Moves with the clock, shows where the mouse is held and whether A is down.
+# The window runs it with -U DARK, which the take must carry to the replay.
 SCENE = """// take: clock, drag and key
 #pragma channel0 keyboard
+#define DARK
 void mainImage(out vec4 c, in vec2 f) {
   vec2 uv = f / iResolution.xy;
   float held = iMouse.z > 0.0 ? 1.0 : 0.3;
   float spot = smoothstep(24.0, 0.0, length(f - iMouse.xy)) * held;
   float a = texelFetch(iChannel0, ivec2(65, 0), 0).x;
   c = vec4(0.5 + 0.5 * sin(iTime * 3.0 + uv.x * 6.0), spot, a * uv.y, 1.0);
+#ifdef DARK
+  c.rgb *= 0.25;
+#endif
 }
 """
 
@@ -50,7 +55,7 @@ def main():
     with open(scene, "w") as f:
         f.write(SCENE)
     out, err = os.path.join(work, "stdout.txt"), os.path.join(work, "stderr.txt")
-    proc = open_window([BINARY, scene, "--size", "320x180", "--no-ui", "-v"], out, err, work)
+    proc = open_window([BINARY, scene, "--size", "320x180", "--no-ui", "-v", "-U", "DARK"], out, err, work)
     window = first_frame_window(proc, "take.frag", err)
     check("the window opens", window is not None)
     if not window:
@@ -100,6 +105,7 @@ def main():
     check("the take has A down and up", [65, 1] in keys and [65, 0] in keys, str(keys))
     check("the take names its scene and sources", take["scene"] == "take.frag" and
           "take.frag" in take["events"][0]["hashes"], str(take["events"]))
+    check("the take records the window's -U", take.get("undefines") == ["DARK"], str(take.get("undefines")))
 
     # Two replays, frame by frame as recorded: the same files.
     runs = []

@@ -28,6 +28,7 @@ Take sample_take(const fs::path& dir) {
   Take take;
   take.scene = dir / "scene.frag";
   take.include_dirs = {dir / "lib", "/usr/share/elsewhere"};
+  take.undefines = {"AA"};
   take.channels[2] = dir / "textures" / "wood.png";
   take.date = "2026-11-24T04:00:00.000";
   take.events.push_back({0, {{"RM_STEPS", "64"}}, {{"scene.frag", "00000000000000aa"}}});
@@ -75,6 +76,7 @@ TEST_F(TakeFiles, ReadsBackWhatWasWrittenAndWritesOnlyWhatChanged) {
   ASSERT_TRUE(back) << error;
   EXPECT_EQ(back->scene, take.scene);
   EXPECT_EQ(back->include_dirs, take.include_dirs);
+  EXPECT_EQ(back->undefines, take.undefines);
   EXPECT_EQ(back->channels, take.channels);  // --channel2 only
   EXPECT_EQ(back->date, take.date);
   ASSERT_EQ(back->events.size(), 2u);
