@@ -36,6 +36,15 @@ class Cli : public ::testing::Test {
     return (dir_ / name).string();
   }
   static int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+  // The red of pixel (0, 0) of `scene` drawn at 2x2 with `options`, into red.exr.
+  float red_of(const std::string& scene, const std::string& options) {
+    const test::Outcome r = run("render " + scene + " -o " + (dir_ / "red.exr").string() + " --size 2x2" + options);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return test::read_pixels(dir_ / "red.exr").at(0);
+  }
+  static std::string command_of(const std::filesystem::path& picture) {
+    return OIIO::ImageInput::open(picture.string())->spec().get_string_attribute("ImageDescription");
+  }
   TempDir dir_;
 };
 
@@ -87,16 +96,10 @@ TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
 // machines must match, and an offline picture may take its time. A -D wins.
 TEST_F(Cli, RenderGivesHwPerformanceOneOnAnyRenderer) {
   write_file(dir_ / "hw.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(float(HW_PERFORMANCE), 0.5, 0.0, 1.0); }\n");
-  const std::string scene = (dir_ / "hw.frag").string(), exr = (dir_ / "hw.exr").string();
-  const auto red = [&](const std::string& options) {
-    const test::Outcome r = run("render " + scene + " -o " + exr + " --size 2x2" + options);
-    EXPECT_EQ(r.status, 0) << r.err;
-    return test::read_pixels(exr).at(0);
-  };
-  EXPECT_EQ(red(""), 1.0f);
-  const std::string command = OIIO::ImageInput::open(exr)->spec().get_string_attribute("ImageDescription");
-  EXPECT_EQ(command.find("HW_PERFORMANCE"), std::string::npos) << command;
-  EXPECT_EQ(red(" -D HW_PERFORMANCE=0"), 0.0f);
+  const std::string scene = (dir_ / "hw.frag").string();
+  EXPECT_EQ(red_of(scene, ""), 1.0f);
+  EXPECT_EQ(command_of(dir_ / "red.exr").find("HW_PERFORMANCE"), std::string::npos) << command_of(dir_ / "red.exr");
+  EXPECT_EQ(red_of(scene, " -D HW_PERFORMANCE=0"), 0.0f);
 }
 
 // -U NAME, as a compiler's: the scene's own #define of NAME is read as a
@@ -106,15 +109,10 @@ TEST_F(Cli, RenderGivesHwPerformanceOneOnAnyRenderer) {
 TEST_F(Cli, RenderUndefinesAScenesOwnMacroAndRecordsIt) {
   write_file(dir_ / "aa.frag", "#define AA\nvoid mainImage(out vec4 c, in vec2 f) {\n#ifdef AA\n  c = vec4(1.0);\n"
                                "#else\n  c = vec4(0.5);\n#endif\n}\n");
-  const std::string scene = (dir_ / "aa.frag").string(), exr = (dir_ / "aa.exr").string();
-  const auto red = [&](const std::string& options) {
-    const test::Outcome r = run("render " + scene + " -o " + exr + " --size 2x2" + options);
-    EXPECT_EQ(r.status, 0) << r.err;
-    return test::read_pixels(exr).at(0);
-  };
-  EXPECT_EQ(red(""), 1.0f);
-  EXPECT_EQ(red(" -U AA"), 0.5f);
-  const std::string command = OIIO::ImageInput::open(exr)->spec().get_string_attribute("ImageDescription");
+  const std::string scene = (dir_ / "aa.frag").string(), exr = (dir_ / "red.exr").string();
+  EXPECT_EQ(red_of(scene, ""), 1.0f);
+  EXPECT_EQ(red_of(scene, " -U AA"), 0.5f);
+  const std::string command = command_of(exr);
   EXPECT_NE(command.find(" -U AA"), std::string::npos) << command;
   const test::Outcome again = run(command.substr(std::string("raymarching ").size()) + " -o " + exr);
   ASSERT_EQ(again.status, 0) << again.err;
@@ -144,7 +142,7 @@ TEST_F(Cli, RenderSetGivesUniformsAndTheMetadataReproducesThem) {
   const std::vector<float> pixels = test::read_pixels(first);
   ASSERT_EQ(pixels.size(), 16u);
   EXPECT_EQ(std::vector<float>(pixels.begin(), pixels.begin() + 3), (std::vector<float>{0.5f, 1.0f, 2.0f}));
-  const std::string command = OIIO::ImageInput::open(first)->spec().get_string_attribute("ImageDescription");
+  const std::string command = command_of(first);
   EXPECT_NE(command.find("--set gain=2 --set tint=0.25,0.5,1"), std::string::npos) << command;
   ASSERT_EQ(command.rfind("raymarching render ", 0), 0u) << command;
   r = run(command.substr(std::string("raymarching ").size()) + " -o " + (dir_ / "again.exr").string());
@@ -425,7 +423,7 @@ TEST_F(Cli, RenderMotionBlurAveragesTimesOverTheOpenShutter) {
   const auto png = dir_ / "blurred.png";
   ASSERT_EQ(run("render " + (dir_ / "step.frag").string() + " -o " + png.string() +
                 " --size 8x4 --time 0.2 --fps 10 --motion-samples 4 --shutter 1").status, 0);
-  const std::string command = OIIO::ImageInput::open(png.string())->spec().get_string_attribute("ImageDescription");
+  const std::string command = command_of(png);
   EXPECT_NE(command.find(" --fps 10 --shutter 1 --motion-samples 4"), std::string::npos) << command;
 
   const test::Outcome lone = run("render " + (dir_ / "step.frag").string() + " -o " + png.string() + " --shutter 0.5");
