@@ -62,7 +62,8 @@ bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms)
   return part_ == parts_.size();
 }
 
-void TiledShot::restart() {
+void TiledShot::restart(Metadata metadata) {
+  metadata_ = std::move(metadata);
   start_part(0);
   tiles_ = 0;
 }

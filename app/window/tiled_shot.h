@@ -29,12 +29,14 @@ class TiledShot {
 
   // Draws tiles for about slice_ms; true once the picture is whole.
   bool draw(FrameGraph& graph, const Project& project, double slice_ms);
-  // A new program: the shot is drawn again from its first tile.
-  void restart();
+  // A new program: the shot is drawn again from its first tile, with the
+  // metadata that says what that program is.
+  void restart(Metadata metadata);
 
   const Image& read() const { return whole_; }  // once draw() returned true
   const std::filesystem::path& path() const { return path_; }
   const Metadata& metadata() const { return metadata_; }
+  const FrameInputs& inputs() const { return inputs_; }
   int tiles() const { return tiles_; }  // drawn so far, since the last restart
 
  private:

@@ -304,7 +304,8 @@ class WindowApp {
         last_moving_done_ = 0;
         program_drawn_ = false;
       }
-      for (TiledShot& shot : shots_) shot.restart();  // a shot shows the scene as saved
+      // A shot shows the scene as saved, and records the program it shows.
+      for (TiledShot& shot : shots_) shot.restart(shot_metadata(shot.inputs(), 1, shot.metadata()));
       too_slow_ = false;
       last_swap_ns_ = steady_ns();
     }
@@ -876,7 +877,7 @@ class WindowApp {
     const std::string name = options_.scene.stem().string() + "-" + file_timestamp() + "." + options_.shot_format;
     Metadata metadata = frame_metadata(options_.scene, shown_source_, in, refined ? samples_ : 1);
     // Which frame of the take being recorded this is: `render --take` draws it again.
-    if (take_.recording()) metadata.emplace_back("raymarching:take_frame", std::to_string(take_.current_frame()));
+    if (take_.recording()) metadata.emplace_back(kTakeFrame, std::to_string(take_.current_frame()));
     if (refined) {
       save_shot(picture_.read(), options_.shot_dir / name, metadata);
     } else if (budget_.budget_ms() > 0) {
@@ -901,6 +902,16 @@ class WindowApp {
     save_shot(shot.read(), shot.path(), shot.metadata());
     shots_.pop_front();
   }
+
+  // A shot's metadata again, for the program shown now: the take's frame it
+  // was taken at stays.
+  Metadata shot_metadata(const FrameInputs& in, int samples, const Metadata& before) const {
+    Metadata metadata = frame_metadata(options_.scene, shown_source_, in, samples);
+    for (const auto& entry : before)
+      if (entry.first == kTakeFrame) metadata.push_back(entry);
+    return metadata;
+  }
+  static constexpr char kTakeFrame[] = "raymarching:take_frame";
 
   void save_shot(const Image& image, const fs::path& path, const Metadata& metadata) {
     std::string error;

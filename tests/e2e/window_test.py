@@ -65,8 +65,9 @@ def quit_with(proc, window, key):
         return None
 
 
-def matches_render(shot, scene_file, workdir):
-    """Renders what the shot's metadata says, headless, and compares pixels."""
+def matches_render(shot, scene_file, workdir, fail_percent=0):
+    """Renders what the shot's metadata says, headless, and compares pixels:
+    none may differ by more than 1.5/255, or `fail_percent` of them."""
     command = shlex.split(metadata(shot)["ImageDescription"])
     assert command[:2] == ["raymarching", "render"], command
     reference = os.path.join(workdir, "reference.png")
@@ -74,7 +75,7 @@ def matches_render(shot, scene_file, workdir):
     subprocess.run(args, check=True)
     # One 8-bit step of tolerance: the window's framebuffer and the float
     # target may round differently.
-    diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
+    diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", str(fail_percent), shot, reference],
                           capture_output=True, text=True)
     return diff.returncode == 0, diff.stdout
 
@@ -525,8 +526,26 @@ def knob_session():
     check("F12 records the knob", steps is not None and int(steps) < 30, steps)
     hit = metadata(shot).get("raymarching:define:RM_HIT_PIXELS") if shot else None
     check("... and the float knob, at its last value", hit is not None and 2.0 < float(hit) < 16.0, hit)
-    ok, detail = matches_render(shot, tori, work) if shot else (False, "no shot")
+    # The still may hold the twin's samples, which differ from the exact
+    # program's by float rounding (a pixel by 2/255 seen at 8 steps): a few
+    # pixels, not a picture.
+    ok, detail = matches_render(shot, tori, work, fail_percent=0.01) if shot else (False, "no shot")
     check("... and render of the shot's command line matches it", ok, detail)
+    # Moving again, F12 just after a knob is let go: the shot waits for the
+    # knob's program and shows it, so it must record that program's -D.
+    xdotool("key", "--window", window, "space")
+    xdotool("mousemove", "--window", window, str(MAX_STEPS_SLIDER[0] + 60), str(MAX_STEPS_SLIDER[1]))
+    time.sleep(0.5)
+    let_go = len(open(err_path).read())
+    xdotool("click", "--window", window, 1)
+    shot = take_screenshot(window, out_path)
+    log = open(err_path).read()[let_go:]
+    applied = re.findall(r"-D RM_MAX_STEPS=(\d+)", log)
+    steps = metadata(shot).get("raymarching:define:RM_MAX_STEPS") if shot else None
+    check("F12 during a knob's build records the program the shot shows",
+          applied and steps == applied[-1] and log.find("reload ok") < log.find("screenshot drawn"), (applied, steps))
+    ok, detail = matches_render(shot, tori, work) if shot else (False, "no shot")
+    check("... and render of its command line matches it", ok, detail)
     status = quit_with(proc, window, "q")
     check("Q quits tori with status 0", status == 0, status)
 
