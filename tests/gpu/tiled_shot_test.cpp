@@ -42,11 +42,13 @@ TEST_F(TiledShotTest, AShotLargerThanTheLargestTargetIsDrawnInPartsAndEqualsTheW
   EXPECT_EQ(shot.read().height, size.y);
   EXPECT_EQ(shot.read().rgba, whole.rgba);
 
-  // A new program part way: drawn again from the first tile, and whole again.
-  TiledShot again(in, size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "again.png", {});
+  // A new program part way: drawn again from the first tile, and whole
+  // again, with the new program's metadata.
+  TiledShot again(in, size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "again.png", {{"raymarching:define:A", "1"}});
   for (int i = 0; i < 7; ++i) ASSERT_FALSE(again.draw(graph_, project, 0.0));
-  again.restart();
+  again.restart({{"raymarching:define:A", "2"}});
   EXPECT_EQ(again.tiles(), 0);
+  EXPECT_EQ(again.metadata(), (Metadata{{"raymarching:define:A", "2"}}));
   while (!again.draw(graph_, project, 1e9)) {
   }
   EXPECT_EQ(again.read().rgba, whole.rgba);
