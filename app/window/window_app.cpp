@@ -875,9 +875,10 @@ class WindowApp {
     // --samples` with the samples it has gathered draws.
     const bool refined = samples_ > 1 && !drawing_ && picture_.size() == size;
     const std::string name = options_.scene.stem().string() + "-" + file_timestamp() + "." + options_.shot_format;
-    Metadata metadata = frame_metadata(options_.scene, shown_source_, in, refined ? samples_ : 1);
     // Which frame of the take being recorded this is: `render --take` draws it again.
-    if (take_.recording()) metadata.emplace_back(kTakeFrame, std::to_string(take_.current_frame()));
+    Metadata taken;
+    if (take_.recording()) taken.emplace_back(kTakeFrame, std::to_string(take_.current_frame()));
+    Metadata metadata = shot_metadata(in, refined ? samples_ : 1, taken);
     if (refined) {
       save_shot(picture_.read(), options_.shot_dir / name, metadata);
     } else if (budget_.budget_ms() > 0) {
@@ -903,11 +904,11 @@ class WindowApp {
     shots_.pop_front();
   }
 
-  // A shot's metadata again, for the program shown now: the take's frame it
-  // was taken at stays.
-  Metadata shot_metadata(const FrameInputs& in, int samples, const Metadata& before) const {
+  // What a shot records: the program shown now, and the take's frame from
+  // `taken` (kept when a new program restarts the shot).
+  Metadata shot_metadata(const FrameInputs& in, int samples, const Metadata& taken) const {
     Metadata metadata = frame_metadata(options_.scene, shown_source_, in, samples);
-    for (const auto& entry : before)
+    for (const auto& entry : taken)
       if (entry.first == kTakeFrame) metadata.push_back(entry);
     return metadata;
   }
@@ -1170,7 +1171,7 @@ int run_window(const WindowOptions& options) {
     for_this.source = for_renderer(options.source, gl_renderer);
     if (options.verbose)
       std::cerr << "raymarching: renderer " << gl_renderer
-                << (for_this.source.defines.size() > options.source.defines.size()
+                << (for_this.source.defines != options.source.defines
                         ? ", on the CPU: -D HW_PERFORMANCE=0 (-D HW_PERFORMANCE=1 draws what a desktop GPU gets)"
                         : "")
                 << '\n';
