@@ -26,8 +26,8 @@ import sys
 import tempfile
 import time
 
-from harness import (capture_screen, check, first_frame_window, metadata, open_window, pixels_over, save_by_rename,
-                     summary, take_screenshot, wait_for, xdotool)
+from harness import (capture_screen, check, first_frame_window, matches_render, metadata, open_window, pixels_over,
+                     save_by_rename, summary, take_screenshot, wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 
@@ -219,13 +219,8 @@ def tiled_feedback(work):
     shot = take_screenshot(window, out)
     check("paused, F12 writes a shot", bool(shot))
     if shot:
-        command = shlex.split(metadata(shot)["ImageDescription"])
-        reference = os.path.join(work, "feedback_reference.png")
-        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
-        diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
-                              capture_output=True, text=True)
-        check("a buffer drawn in tiles frame after frame is the one `render` draws whole", diff.returncode == 0,
-              diff.stdout + " " + " ".join(command))
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "feedback_reference.png"))
+        check("a buffer drawn in tiles frame after frame is the one `render` draws whole", same, report)
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
 
@@ -359,12 +354,8 @@ def scaled_then_refined(work):
     if shot and rested:
         over = pixels_over(rested, shot, 1.5 / 255, work)
         check("the rested picture on screen is the full-size one F12 takes", over == 0, over)
-        command = shlex.split(metadata(shot)["ImageDescription"])
-        reference = os.path.join(work, "reference.png")
-        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
-        diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
-                              capture_output=True, text=True)
-        check("... which `render` of its command line matches", diff.returncode == 0, diff.stdout)
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "reference.png"))
+        check("... which `render` of its command line matches", same, report)
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
 
@@ -395,14 +386,10 @@ def shots_in_tiles(work):
     shot = take_screenshot(window, out)
     check("F12 while it moves writes a shot", bool(shot))
     if shot:
-        command = shlex.split(metadata(shot)["ImageDescription"])
-        reference = os.path.join(work, "tiled_reference.png")
-        subprocess.run([BINARY, "render", scene] + command[3:] + ["-o", reference], check=True)
-        diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", "0", shot, reference],
-                              capture_output=True, text=True)
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "tiled_reference.png"))
         tiles = re.search(r"screenshot drawn in (\d+) tiles", open(err).read())
         check("... drawn in tiles", tiles is not None and int(tiles.group(1)) > 1, open(err).read()[-300:])
-        check("... it is what `render` of its command line draws", diff.returncode == 0, diff.stdout)
+        check("... it is what `render` of its command line draws", same, report)
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
 

@@ -2,6 +2,7 @@
 xdotool, saving like an editor, and reading back screenshots."""
 import os
 import re
+import shlex
 import subprocess
 import time
 
@@ -170,3 +171,19 @@ def pixels_over(a, b, threshold, work, region=None):
     out = subprocess.run(["idiff", "-fail", limit, a, b], capture_output=True, text=True).stdout
     found = re.search(r"(\d+) pixels \([0-9.]+%\) over " + re.escape(limit), out)
     return int(found.group(1)) if found else (0 if "PASS" in out else None)
+
+
+def matches_render(binary, shot, scene_file, reference, fail_percent=0):
+    """Renders what the shot's metadata says, headless, to `reference`, and
+    compares pixels: none may differ by more than 1.5/255, but for
+    `fail_percent` of them. Returns (ok, idiff's report)."""
+    command = shlex.split(metadata(shot)["ImageDescription"])
+    assert command[:2] == ["raymarching", "render"], command
+    subprocess.run([binary, "render", scene_file] + command[3:] + ["-o", reference], check=True)
+    # One 8-bit step of tolerance: the window's framebuffer and the float
+    # target may round differently. idiff warns of any pixel over its -warn
+    # (1e-6 unless given), and says so in its exit status: the same limits.
+    limits = ["-fail", str(1.5 / 255), "-failpercent", str(fail_percent)]
+    diff = subprocess.run(["idiff", *limits, *(arg.replace("fail", "warn") for arg in limits), shot, reference],
+                          capture_output=True, text=True)
+    return diff.returncode == 0, diff.stdout + " " + " ".join(command)

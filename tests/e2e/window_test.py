@@ -34,6 +34,7 @@ import sys
 import tempfile
 import time
 
+import harness
 from harness import (capture_screen, check, count_pixels, cpu_seconds, first_frame_window, mean_colour, metadata,
                      open_window, pixels_over, save_by_rename, summary, take_screenshot, wait_for, xdotool)
 
@@ -66,18 +67,7 @@ def quit_with(proc, window, key):
 
 
 def matches_render(shot, scene_file, workdir, fail_percent=0):
-    """Renders what the shot's metadata says, headless, and compares pixels:
-    none may differ by more than 1.5/255, or `fail_percent` of them."""
-    command = shlex.split(metadata(shot)["ImageDescription"])
-    assert command[:2] == ["raymarching", "render"], command
-    reference = os.path.join(workdir, "reference.png")
-    args = [BINARY, "render", scene_file] + command[3:] + ["-o", reference]
-    subprocess.run(args, check=True)
-    # One 8-bit step of tolerance: the window's framebuffer and the float
-    # target may round differently.
-    diff = subprocess.run(["idiff", "-fail", str(1.5 / 255), "-failpercent", str(fail_percent), shot, reference],
-                          capture_output=True, text=True)
-    return diff.returncode == 0, diff.stdout
+    return harness.matches_render(BINARY, shot, scene_file, os.path.join(workdir, "reference.png"), fail_percent)
 
 
 def main():
