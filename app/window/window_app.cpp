@@ -120,9 +120,13 @@ class WindowApp {
         if (std::exchange(twin_build_, false)) {
           if (*built == ReloadStatus::Swapped) project_.commit_twins();
           if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
+          // Unchanged but not cancelled: the twins were current already, or
+          // there is nothing to lift, or the driver rejected them.
           if (options_.verbose)
-            std::cerr << "raymarching: twins "
-                      << (*built == ReloadStatus::Swapped ? "built" : builder_.cancelled() ? "put off" : "not built")
+            std::cerr << "raymarching: "
+                      << (*built == ReloadStatus::Swapped ? "twins built"
+                          : builder_.cancelled()          ? "twins put off"
+                                                          : "no new twins")
                       << " for generation " << project_.generation() << " in "
                       << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
           if (options_.verbose) log_constants_compiled();
