@@ -159,7 +159,10 @@ SourceOptions SourceFlags::source() const {
     for (const auto& name : undefines) {
       if (!is_name(name)) throw UsageError{"-U '" + name + "': not a macro name"};
       for (const Define& d : out.defines)
-        if (d.name == name) throw UsageError{"-U " + name + ": -D gives " + name + " a value; give one of them"};
+        if (d.name == name) {
+          const bool from_quality = !quality.empty() && &d == &out.defines.back();  // pushed last, above
+          throw UsageError{"-U " + name + ": " + (from_quality ? "--quality" : "-D") + " gives " + name + " a value; give one of them"};
+        }
       out.undefines.push_back(name);
     }
     return out;

@@ -125,6 +125,9 @@ TEST_F(Cli, RenderUndefinesAScenesOwnMacroAndRecordsIt) {
   bad = run("render " + scene + " -o " + exr + " -D AA=2 -U AA");
   EXPECT_EQ(bad.status, 2);
   EXPECT_EQ(bad.err, "raymarching: error: -U AA: -D gives AA a value; give one of them\n");
+  bad = run("render " + scene + " -o " + exr + " --quality draft -U RM_QUALITY");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "raymarching: error: -U RM_QUALITY: --quality gives RM_QUALITY a value; give one of them\n");
 }
 
 // render --set gives the shader's own uniforms their values; the picture's
