@@ -85,7 +85,7 @@ def settled(err):
     """Whether the builds that follow the latest swap in the background are
     over: the window has looked at its twins (after a tweak, the exact
     program's swap comes first)."""
-    return re.search(rf"twins (not )?built for generation {latest_generation(err)} ", log(err)) is not None
+    return re.search(rf"(twins built|no new twins) for generation {latest_generation(err)} ", log(err)) is not None
 
 
 def session(binary, scene, work):
