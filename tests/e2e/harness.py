@@ -181,8 +181,8 @@ def matches_render(binary, shot, scene_file, reference, fail_percent=0):
     assert command[:2] == ["raymarching", "render"], command
     subprocess.run([binary, "render", scene_file] + command[3:] + ["-o", reference], check=True)
     # One 8-bit step of tolerance: the window's framebuffer and the float
-    # target may round differently. idiff warns of any pixel over its -warn
-    # (1e-6 unless given), and says so in its exit status: the same limits.
+    # target may round differently. A pixel -failpercent lets pass is still
+    # a warning, and idiff's exit status 1, unless -warnpercent allows it.
     limits = ["-fail", str(1.5 / 255), "-failpercent", str(fail_percent)]
     diff = subprocess.run(["idiff", *limits, *(arg.replace("fail", "warn") for arg in limits), shot, reference],
                           capture_output=True, text=True)
