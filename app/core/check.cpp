@@ -4,6 +4,7 @@
 #include <cstring>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "core/glslang_client.h"
 #include "core/lexing.h"
@@ -109,6 +110,33 @@ std::string unresolved_function(const std::string& message) {
   const std::string_view prefix = "unresolved reference to function `";
   if (message.rfind(prefix, 0) != 0 || message.back() != '\'') return "";
   return message.substr(prefix.size(), message.size() - prefix.size() - 1);
+}
+
+// The conditional (#if, #ifdef, #ifndef) that glslang's "missing #endif"
+// at the end of the text means: the innermost one left open, as its final
+// line (1-based), column and name; nullopt when all are closed.
+struct OpenConditional {
+  int final_line = 0;
+  int column = 0;
+  std::string name;
+};
+std::optional<OpenConditional> innermost_open_conditional(const std::string& text) {
+  const std::string code = lexing::strip_comments(text);
+  std::vector<OpenConditional> open;
+  int number = 0;
+  for (size_t at = 0; at <= code.size();) {
+    const size_t end = std::min(code.find('\n', at), code.size());
+    ++number;
+    if (const auto d = lexing::directive(std::string_view(code).substr(at, end - at))) {
+      if (d->name == "if" || d->name == "ifdef" || d->name == "ifndef")
+        open.push_back({number, static_cast<int>(d->hash) + 1, std::string(d->name)});
+      else if (d->name == "endif" && !open.empty())
+        open.pop_back();
+    }
+    at = end + 1;
+  }
+  if (open.empty()) return std::nullopt;
+  return open.back();
 }
 
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
@@ -251,7 +279,6 @@ std::optional<std::string> active_code(const std::string& text) {
 
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format) {
   Diagnostics out;
-  bool nesting_exceeded = false;
   std::istringstream in(log);
   std::string text;
   while (std::getline(in, text)) {
@@ -267,9 +294,20 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
         if (final_line && line.take(": ")) {
           const std::string message = line.rest();
           if (message == "'' : compilation terminated") continue;  // follows a real error
-          // At the end of the file, after #if nesting ran over, of course an #endif is missing.
-          if (nesting_exceeded && message == "'' : missing #endif") continue;
-          nesting_exceeded |= message.find("maximum nesting depth exceeded") != std::string::npos;
+          // glslang stops at its first error, inside a conditional if it was
+          // in one (or after #if nesting ran over): then of course an #endif
+          // is missing.
+          const bool missing_endif = message == "'' : missing #endif";
+          const bool after_error = std::any_of(out.begin(), out.end(), [](const Diagnostic& d) {
+            return d.severity == Severity::Error;
+          });
+          if (missing_endif && after_error) continue;
+          // Else it is at the end of the text, where the host's code is: say
+          // where the conditional left open starts, as C compilers do.
+          if (const auto open = missing_endif ? innermost_open_conditional(source.text) : std::nullopt) {
+            out.push_back(locate(source, *severity, open->final_line, open->column, "unterminated #" + open->name));
+            continue;
+          }
           const int col = column_in_line(message, source.final_line_text(*final_line));
           out.push_back(locate(source, *severity, *final_line, col, plain_words(message)));
           continue;

@@ -23,6 +23,29 @@ TEST(Check, ErrorInAnIncludedFileNamesThatFileAndLine) {
   EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() + ":4:10: error: 'undefined_name' : undeclared identifier");
 }
 
+// glslang stops at the first error, and inside a conditional (an include
+// guard) it then says an #endif is missing: it is not, and is not shown.
+TEST(Check, ErrorInsideAnIncludeGuardIsTheOnlyError) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
+  write_file(dir / "lib.glsl", "#ifndef LIB\n#define LIB\nfloat g() { return nope; }\n#endif\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() + ":3:20: error: 'nope' : undeclared identifier\n");
+}
+
+// A conditional left open is reported where it opens, as C compilers do,
+// not at the end of the text, which is the host's code; an #endif in a
+// comment closes nothing.
+TEST(Check, UnterminatedConditionalNamesItsOpeningLine) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
+  write_file(dir / "lib.glsl", "#ifndef LIB\n#define LIB\n  #if 1 // #endif\n/* #endif */\nfloat g() { return 1.0; }\n#endif\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() + ":1:1: error: unterminated #ifndef\n");
+}
+
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n\n\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(nope);\n}\n");
