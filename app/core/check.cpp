@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -137,6 +138,56 @@ std::optional<OpenConditional> innermost_open_conditional(const std::string& tex
   }
   if (open.empty()) return std::nullopt;
   return open.back();
+}
+
+// The '{' a file of the user's left open at its end, for an error glslang
+// reports after that end (in a later file, or in the host's code after the
+// scene): the innermost such brace of the first such file, as its final line
+// (1-based) and column. Of a conditional's branches only the first is
+// counted, since they are alternatives ("#ifdef A\nvoid f() {\n#else ...").
+struct OpenBrace {
+  int final_line = 0;
+  int column = 0;
+};
+std::optional<OpenBrace> brace_left_open_before(const Source& source, int error_line) {
+  const std::string code = lexing::strip_comments(source.text);
+  struct FileState {
+    std::vector<OpenBrace> open;
+    int last_line = 0;
+  };
+  std::map<int, FileState> files;
+  // Where each file ends in the whole text: a file that includes another
+  // inside a block goes on after the error in it.
+  for (size_t i = 0; i < source.line_map.size(); ++i)
+    if (source.line_map[i].file >= 0) files[source.line_map[i].file].last_line = static_cast<int>(i) + 1;
+  std::vector<bool> in_later_branch;  // per open conditional
+  int number = 0;
+  for (size_t at = 0; at < code.size() && number + 1 < error_line;) {
+    const size_t end = std::min(code.find('\n', at), code.size());
+    const std::string_view line = std::string_view(code).substr(at, end - at);
+    const int file = source.line_map.at(static_cast<size_t>(number)).file;
+    ++number;
+    at = end + 1;
+    if (const auto d = lexing::directive(line)) {
+      if (d->name == "if" || d->name == "ifdef" || d->name == "ifndef") in_later_branch.push_back(false);
+      else if ((d->name == "else" || d->name == "elif") && !in_later_branch.empty()) in_later_branch.back() = true;
+      else if (d->name == "endif" && !in_later_branch.empty()) in_later_branch.pop_back();
+      continue;
+    }
+    if (file < 0) continue;
+    FileState& state = files[file];
+    if (std::find(in_later_branch.begin(), in_later_branch.end(), true) != in_later_branch.end()) continue;
+    for (size_t i = 0; i < line.size(); ++i) {
+      if (line[i] == '{') state.open.push_back({number, static_cast<int>(i) + 1});
+      else if (line[i] == '}' && !state.open.empty()) state.open.pop_back();
+    }
+  }
+  const FileState* first = nullptr;
+  for (const auto& [file, state] : files)
+    if (!state.open.empty() && state.last_line < error_line && (!first || state.last_line < first->last_line))
+      first = &state;
+  if (!first) return std::nullopt;
+  return first->open.back();
 }
 
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
@@ -306,6 +357,15 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           // where the conditional left open starts, as C compilers do.
           if (const auto open = missing_endif ? innermost_open_conditional(source.text) : std::nullopt) {
             out.push_back(locate(source, *severity, open->final_line, open->column, "unterminated #" + open->name));
+            continue;
+          }
+          // A file that ends inside a block puts what follows it there: the
+          // error is the '{' it left open.
+          const auto open_brace = *severity == Severity::Error && !after_error
+                                      ? brace_left_open_before(source, *final_line) : std::nullopt;
+          if (open_brace) {
+            out.push_back(locate(source, *severity, open_brace->final_line, open_brace->column,
+                                 "'{' : not closed before the end of the file"));
             continue;
           }
           const int col = column_in_line(message, source.final_line_text(*final_line));

@@ -46,6 +46,39 @@ TEST(Check, UnterminatedConditionalNamesItsOpeningLine) {
   EXPECT_EQ(join(diags), (dir / "lib.glsl").string() + ":1:1: error: unterminated #ifndef\n");
 }
 
+// A file that ends inside a block: glslang's error comes after it, in the
+// host's code after the scene or in the file that included it, and makes no
+// sense there. The error is the '{' left open.
+TEST(Check, BraceLeftOpenAtAFilesEndIsTheError) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":1:39: error: '{' : not closed before the end of the file\n");
+
+  write_file(dir / "lib.glsl", "float g() {\n  return 1.0;\n");
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() + ":1:11: error: '{' : not closed before the end of the file\n");
+}
+
+// Braces that do balance are left alone: an include inside a function's
+// body, and the alternative branches of a conditional, each with a '{'.
+TEST(Check, BalancedBracesKeepGlslangsError) {
+  TempDir dir;
+  write_file(dir / "body.glsl", "return nope;\n");
+  write_file(dir / "scene.frag", "float g() {\n#include \"body.glsl\"\n}\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "body.glsl").string() + ":1:8: error: 'nope' : undeclared identifier\n");
+
+  write_file(dir / "scene.frag", "#ifdef A\nfloat g() {\n#else\nfloat g() {\n#endif\n  return 1.0;\n}\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(nope); }\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":8:50: error: 'nope' : undeclared identifier\n");
+}
+
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n\n\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(nope);\n}\n");
