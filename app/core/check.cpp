@@ -165,7 +165,8 @@ std::optional<OpenBrace> brace_left_open_before(const Source& source, int error_
   for (size_t at = 0; at < code.size() && number + 1 < error_line;) {
     const size_t end = std::min(code.find('\n', at), code.size());
     const std::string_view line = std::string_view(code).substr(at, end - at);
-    const int file = source.line_map.at(static_cast<size_t>(number)).file;
+    const auto index = static_cast<size_t>(number);
+    const int file = index < source.line_map.size() ? source.line_map[index].file : kHostFile;
     ++number;
     at = end + 1;
     if (const auto d = lexing::directive(line)) {
