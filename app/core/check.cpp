@@ -1,6 +1,7 @@
 #include "core/check.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -68,8 +69,24 @@ int column_in_line(const std::string& message, const std::string& line_text) {
   const size_t unexpected = message.find("unexpected ");
   if (unexpected != std::string::npos) {
     size_t end = unexpected + 11;
-    while (end < message.size() && ((message[end] >= 'A' && message[end] <= 'Z') || message[end] == '_')) ++end;
-    if (const char* spelling = token_spelling(message.substr(unexpected + 11, end - unexpected - 11))) needle = spelling;
+    while (end < message.size() && ((message[end] >= 'A' && message[end] <= 'Z') || lexing::is_digit(message[end]) ||
+                                    message[end] == '_'))
+      ++end;
+    const std::string token = message.substr(unexpected + 11, end - unexpected - 11);
+    if (const char* spelling = token_spelling(token)) {
+      needle = spelling;
+    } else if (!token.empty() && token != "IDENTIFIER" && token != "TYPE_NAME" && token.find("CONSTANT") == token.npos) {
+      // A keyword: glslang names it in capitals (VOID, VEC3, RETURN).
+      std::string keyword = token;
+      for (char& c : keyword) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      for (size_t at = line_text.find(keyword); at != std::string::npos; at = line_text.find(keyword, at + 1)) {
+        const size_t after = at + keyword.size();
+        if ((at == 0 || !lexing::is_word_char(line_text[at - 1])) &&
+            (after == line_text.size() || !lexing::is_word_char(line_text[after])))
+          return static_cast<int>(at) + 1;
+      }
+      return 0;
+    }
   }
   const size_t open = message.find('\'');
   const size_t close = open == std::string::npos ? open : message.find('\'', open + 1);
@@ -189,6 +206,50 @@ std::optional<OpenBrace> brace_left_open_before(const Source& source, int error_
       first = &state;
   if (!first) return std::nullopt;
   return first->open.back();
+}
+
+// A syntax error at the first token after a file of the user's (a ';' or a
+// ')' missing at its end): glslang names a token of the code that follows,
+// in the host's code or the including file. The error is at the end of that
+// file's last code, where the ';' goes, and the token does not matter.
+struct EndOfFileError {
+  int final_line = 0;
+  int column = 0;
+  std::string message;
+};
+std::optional<EndOfFileError> syntax_error_after_a_file(const Source& source, int error_line,
+                                                        const std::string& message) {
+  const std::string_view unexpected = "syntax error, unexpected ";
+  const size_t at = message.find(unexpected);
+  const size_t token_end = at == std::string::npos ? at : message.find_first_of(", ", at + unexpected.size());
+  if (token_end == std::string::npos) return std::nullopt;
+  const auto file_of = [&](int line) {
+    return line >= 1 && static_cast<size_t>(line) <= source.line_map.size() ? source.line_map[line - 1].file : kHostFile;
+  };
+  std::vector<std::string> lines;
+  std::istringstream code(lexing::strip_comments(source.text));
+  for (std::string line; std::getline(code, line) && static_cast<int>(lines.size()) < error_line;) lines.push_back(line);
+  if (static_cast<int>(lines.size()) < error_line) return std::nullopt;
+  const std::string& failing = lines[error_line - 1];
+  const int column = column_in_line(message, failing);
+  if (column == 0 || lexing::skip_blanks(failing, 0) + 1 != static_cast<size_t>(column)) return std::nullopt;
+  // Back to the code before it, past whole conditionals (the host's
+  // #ifdef RM_VIEW): had one been compiled, the error would be in it.
+  int depth = 0;
+  for (int line = error_line - 1; line >= 1; --line) {
+    const std::string& text = lines[line - 1];
+    if (const auto d = lexing::directive(text)) {
+      if (d->name == "endif") ++depth;
+      else if ((d->name == "if" || d->name == "ifdef" || d->name == "ifndef") && depth > 0) --depth;
+      continue;
+    }
+    if (depth > 0 || lexing::skip_blanks(text, 0) == text.size()) continue;
+    if (file_of(line) < 0 || file_of(line) == file_of(error_line)) return std::nullopt;
+    const size_t last = text.find_last_not_of(" \t\r\f\v");
+    return EndOfFileError{line, static_cast<int>(last) + 2,
+                          message.substr(0, at) + "syntax error at the end of the file" + message.substr(token_end)};
+  }
+  return std::nullopt;
 }
 
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
@@ -367,6 +428,12 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           if (open_brace) {
             out.push_back(locate(source, *severity, open_brace->final_line, open_brace->column,
                                  "'{' : not closed before the end of the file"));
+            continue;
+          }
+          const auto at_end = *severity == Severity::Error && !after_error
+                                  ? syntax_error_after_a_file(source, *final_line, message) : std::nullopt;
+          if (at_end) {
+            out.push_back(locate(source, *severity, at_end->final_line, at_end->column, at_end->message));
             continue;
           }
           const int col = column_in_line(message, source.final_line_text(*final_line));

@@ -79,6 +79,41 @@ TEST(Check, BalancedBracesKeepGlslangsError) {
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":8:50: error: 'nope' : undeclared identifier\n");
 }
 
+// A declaration a file leaves unfinished: glslang names the next token,
+// in the host's code or the including file. The error is where the ';' goes.
+TEST(Check, SyntaxErrorAtAFilesEndIsPutThere) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\nconst float x = 1.0 // no ;\n\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
+                             ":2:20: error: '' :  syntax error at the end of the file, expecting COMMA or SEMICOLON\n");
+
+  write_file(dir / "lib.glsl", "float g(float a\n");
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() +
+                             ":1:16: error: '' :  syntax error at the end of the file, expecting RIGHT_PAREN\n");
+}
+
+// A scene's macro that breaks the host's main() is not at the scene's end,
+// and an error in the middle of a line is where glslang says: it names a
+// keyword in capitals, and the column is found from it.
+TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#define color 1.0\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
+                             ": error: in the code the host adds around the scene: '' :  syntax error, unexpected "
+                             "FLOATCONSTANT, expecting COMMA or SEMICOLON\n");
+
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0) return; }\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
+                             ":1:55: error: '' :  syntax error, unexpected RETURN, expecting COMMA or SEMICOLON\n");
+}
+
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n\n\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(nope);\n}\n");
