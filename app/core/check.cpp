@@ -222,7 +222,7 @@ std::optional<EndOfFileError> syntax_error_after_a_file(const Source& source, in
   const std::string_view unexpected = "syntax error, unexpected ";
   const size_t at = message.find(unexpected);
   const size_t token_end = at == std::string::npos ? at : message.find_first_of(", ", at + unexpected.size());
-  if (token_end == std::string::npos) return std::nullopt;
+  if (token_end == std::string::npos || error_line < 1) return std::nullopt;
   const auto file_of = [&](int line) {
     return line >= 1 && static_cast<size_t>(line) <= source.line_map.size() ? source.line_map[line - 1].file : kHostFile;
   };
