@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <map>
 #include <sstream>
 #include <string_view>
 #include <vector>
 
 #include "core/glslang_client.h"
+#include "core/left_open.h"
 #include "core/lexing.h"
 
 namespace rm {
@@ -128,128 +128,6 @@ std::string unresolved_function(const std::string& message) {
   const std::string_view prefix = "unresolved reference to function `";
   if (message.rfind(prefix, 0) != 0 || message.back() != '\'') return "";
   return message.substr(prefix.size(), message.size() - prefix.size() - 1);
-}
-
-// The conditional (#if, #ifdef, #ifndef) that glslang's "missing #endif"
-// at the end of the text means: the innermost one left open, as its final
-// line (1-based), column and name; nullopt when all are closed.
-struct OpenConditional {
-  int final_line = 0;
-  int column = 0;
-  std::string name;
-};
-std::optional<OpenConditional> innermost_open_conditional(const std::string& text) {
-  const std::string code = lexing::strip_comments(text);
-  std::vector<OpenConditional> open;
-  int number = 0;
-  for (size_t at = 0; at <= code.size();) {
-    const size_t end = std::min(code.find('\n', at), code.size());
-    ++number;
-    if (const auto d = lexing::directive(std::string_view(code).substr(at, end - at))) {
-      if (d->name == "if" || d->name == "ifdef" || d->name == "ifndef")
-        open.push_back({number, static_cast<int>(d->hash) + 1, std::string(d->name)});
-      else if (d->name == "endif" && !open.empty())
-        open.pop_back();
-    }
-    at = end + 1;
-  }
-  if (open.empty()) return std::nullopt;
-  return open.back();
-}
-
-// The '{' a file of the user's left open at its end, for an error glslang
-// reports after that end (in a later file, or in the host's code after the
-// scene): the innermost such brace of the first such file, as its final line
-// (1-based) and column. Of a conditional's branches only the first is
-// counted, since they are alternatives ("#ifdef A\nvoid f() {\n#else ...").
-struct OpenBrace {
-  int final_line = 0;
-  int column = 0;
-};
-std::optional<OpenBrace> brace_left_open_before(const Source& source, int error_line) {
-  const std::string code = lexing::strip_comments(source.text);
-  struct FileState {
-    std::vector<OpenBrace> open;
-    int last_line = 0;
-  };
-  std::map<int, FileState> files;
-  // Where each file ends in the whole text: a file that includes another
-  // inside a block goes on after the error in it.
-  for (size_t i = 0; i < source.line_map.size(); ++i)
-    if (source.line_map[i].file >= 0) files[source.line_map[i].file].last_line = static_cast<int>(i) + 1;
-  std::vector<bool> in_later_branch;  // per open conditional
-  int number = 0;
-  for (size_t at = 0; at < code.size() && number + 1 < error_line;) {
-    const size_t end = std::min(code.find('\n', at), code.size());
-    const std::string_view line = std::string_view(code).substr(at, end - at);
-    const auto index = static_cast<size_t>(number);
-    const int file = index < source.line_map.size() ? source.line_map[index].file : kHostFile;
-    ++number;
-    at = end + 1;
-    if (const auto d = lexing::directive(line)) {
-      if (d->name == "if" || d->name == "ifdef" || d->name == "ifndef") in_later_branch.push_back(false);
-      else if ((d->name == "else" || d->name == "elif") && !in_later_branch.empty()) in_later_branch.back() = true;
-      else if (d->name == "endif" && !in_later_branch.empty()) in_later_branch.pop_back();
-      continue;
-    }
-    if (file < 0) continue;
-    FileState& state = files[file];
-    if (std::find(in_later_branch.begin(), in_later_branch.end(), true) != in_later_branch.end()) continue;
-    for (size_t i = 0; i < line.size(); ++i) {
-      if (line[i] == '{') state.open.push_back({number, static_cast<int>(i) + 1});
-      else if (line[i] == '}' && !state.open.empty()) state.open.pop_back();
-    }
-  }
-  const FileState* first = nullptr;
-  for (const auto& [file, state] : files)
-    if (!state.open.empty() && state.last_line < error_line && (!first || state.last_line < first->last_line))
-      first = &state;
-  if (!first) return std::nullopt;
-  return first->open.back();
-}
-
-// A syntax error at the first token after a file of the user's (a ';' or a
-// ')' missing at its end): glslang names a token of the code that follows,
-// in the host's code or the including file. The error is at the end of that
-// file's last code, where the ';' goes, and the token does not matter.
-struct EndOfFileError {
-  int final_line = 0;
-  int column = 0;
-  std::string message;
-};
-std::optional<EndOfFileError> syntax_error_after_a_file(const Source& source, int error_line,
-                                                        const std::string& message) {
-  const std::string_view unexpected = "syntax error, unexpected ";
-  const size_t at = message.find(unexpected);
-  const size_t token_end = at == std::string::npos ? at : message.find_first_of(", ", at + unexpected.size());
-  if (token_end == std::string::npos || error_line < 1) return std::nullopt;
-  const auto file_of = [&](int line) {
-    return line >= 1 && static_cast<size_t>(line) <= source.line_map.size() ? source.line_map[line - 1].file : kHostFile;
-  };
-  std::vector<std::string> lines;
-  std::istringstream code(lexing::strip_comments(source.text));
-  for (std::string line; std::getline(code, line) && static_cast<int>(lines.size()) < error_line;) lines.push_back(line);
-  if (static_cast<int>(lines.size()) < error_line) return std::nullopt;
-  const std::string& failing = lines[error_line - 1];
-  const int column = column_in_line(message, failing);
-  if (column == 0 || lexing::skip_blanks(failing, 0) + 1 != static_cast<size_t>(column)) return std::nullopt;
-  // Back to the code before it, past whole conditionals (the host's
-  // #ifdef RM_VIEW): had one been compiled, the error would be in it.
-  int depth = 0;
-  for (int line = error_line - 1; line >= 1; --line) {
-    const std::string& text = lines[line - 1];
-    if (const auto d = lexing::directive(text)) {
-      if (d->name == "endif") ++depth;
-      else if ((d->name == "if" || d->name == "ifdef" || d->name == "ifndef") && depth > 0) --depth;
-      continue;
-    }
-    if (depth > 0 || lexing::skip_blanks(text, 0) == text.size()) continue;
-    if (file_of(line) < 0 || file_of(line) == file_of(error_line)) return std::nullopt;
-    const size_t last = text.find_last_not_of(" \t\r\f\v");
-    return EndOfFileError{line, static_cast<int>(last) + 2,
-                          message.substr(0, at) + "syntax error at the end of the file" + message.substr(token_end)};
-  }
-  return std::nullopt;
 }
 
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
@@ -415,28 +293,20 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
             return d.severity == Severity::Error;
           });
           if (missing_endif && after_error) continue;
-          // Else it is at the end of the text, where the host's code is: say
-          // where the conditional left open starts, as C compilers do.
-          if (const auto open = missing_endif ? innermost_open_conditional(source.text) : std::nullopt) {
-            out.push_back(locate(source, *severity, open->final_line, open->column, "unterminated #" + open->name));
-            continue;
-          }
-          // A file that ends inside a block puts what follows it there: the
-          // error is the '{' it left open.
-          const auto open_brace = *severity == Severity::Error && !after_error
-                                      ? brace_left_open_before(source, *final_line) : std::nullopt;
-          if (open_brace) {
-            out.push_back(locate(source, *severity, open_brace->final_line, open_brace->column,
-                                 "'{' : not closed before the end of the file"));
-            continue;
-          }
-          const auto at_end = *severity == Severity::Error && !after_error
-                                  ? syntax_error_after_a_file(source, *final_line, message) : std::nullopt;
-          if (at_end) {
-            out.push_back(locate(source, *severity, at_end->final_line, at_end->column, at_end->message));
-            continue;
-          }
+          // What a file of the user's left open at its end (an #if, a '{',
+          // a declaration) is named where it was, not where glslang noticed.
           const int col = column_in_line(message, source.final_line_text(*final_line));
+          std::optional<LeftOpen> left_open;
+          if (missing_endif) {
+            left_open = conditional_left_open(source);
+          } else if (*severity == Severity::Error && !after_error) {
+            left_open = brace_left_open_before(source, *final_line);
+            if (!left_open) left_open = declaration_left_open_before(source, *final_line, col, message);
+          }
+          if (left_open) {
+            out.push_back(locate(source, *severity, left_open->final_line, left_open->column, left_open->message));
+            continue;
+          }
           out.push_back(locate(source, *severity, *final_line, col, plain_words(message)));
           continue;
         }

@@ -1,0 +1,36 @@
+// What a file of the user's leaves open at its end: an #if, a '{' or a
+// declaration. glslang notices only in the code that follows, in the file
+// that included it or in the host's code after the scene, and names a token
+// there that makes no sense to the user. These find where it was left open,
+// as a C compiler names it.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "core/source.h"
+
+namespace rm {
+
+// A place in the final text (1-based line and column) and what to say there.
+struct LeftOpen {
+  int final_line = 0;
+  int column = 0;
+  std::string message;
+};
+
+// For glslang's "missing #endif" at the end of the text: the innermost
+// #if, #ifdef or #ifndef left open ("unterminated #ifdef").
+std::optional<LeftOpen> conditional_left_open(const Source& source);
+
+// For an error at `error_line`: the innermost '{' left open by the first of
+// the user's files that ends before it. Of a conditional's branches only the
+// first is counted, since they are alternatives.
+std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_line);
+
+// For glslang's "syntax error, unexpected TOKEN" at the first token of
+// `error_line` (found at `column`, 0 if not): the end of the user's file
+// whose code comes just before, in another file, where the ';' or ')' goes.
+std::optional<LeftOpen> declaration_left_open_before(const Source& source, int error_line, int column,
+                                                     const std::string& message);
+
+}  // namespace rm
