@@ -32,44 +32,44 @@ std::string shadertoy_prelude(const std::array<ChannelSpec, 4>& channels) {
 // along the direction that samples it back (GL's cube map layout: the face
 // row 0 is its top), from the origin, as on Shadertoy.
 const char* const kCubemapMain = R"glsl(void main() {
-  vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
-  vec2 fragCoord = gl_FragCoord.xy;
-  vec2 st = fragCoord / iResolution.xy * 2.0 - 1.0;
-  vec3 dir;
-  if (rm_CubeFace == 0) dir = vec3(1.0, -st.y, -st.x);
-  else if (rm_CubeFace == 1) dir = vec3(-1.0, -st.y, st.x);
-  else if (rm_CubeFace == 2) dir = vec3(st.x, 1.0, st.y);
-  else if (rm_CubeFace == 3) dir = vec3(st.x, -1.0, -st.y);
-  else if (rm_CubeFace == 4) dir = vec3(st.x, -st.y, 1.0);
-  else dir = vec3(-st.x, -st.y, -1.0);
-  mainCubemap(color, fragCoord, vec3(0.0), normalize(dir));
-  rm_FragColor = color;
+  vec4 rm_color = vec4(0.0, 0.0, 0.0, 1.0);
+  vec2 rm_fragCoord = gl_FragCoord.xy;
+  vec2 rm_st = rm_fragCoord / iResolution.xy * 2.0 - 1.0;
+  vec3 rm_dir;
+  if (rm_CubeFace == 0) rm_dir = vec3(1.0, -rm_st.y, -rm_st.x);
+  else if (rm_CubeFace == 1) rm_dir = vec3(-1.0, -rm_st.y, rm_st.x);
+  else if (rm_CubeFace == 2) rm_dir = vec3(rm_st.x, 1.0, rm_st.y);
+  else if (rm_CubeFace == 3) rm_dir = vec3(rm_st.x, -1.0, -rm_st.y);
+  else if (rm_CubeFace == 4) rm_dir = vec3(rm_st.x, -rm_st.y, 1.0);
+  else rm_dir = vec3(-rm_st.x, -rm_st.y, -1.0);
+  mainCubemap(rm_color, rm_fragCoord, vec3(0.0), normalize(rm_dir));
+  rm_FragColor = rm_color;
 })glsl";
 
 // Shadertoy leaves fragColor's start value undefined; we start from opaque black.
 // With RM_VIEW (render --view, the window's V key) the pixel becomes a debug
 // view: nan works for any shader, the others read what shaderlib recorded.
 const char* const kShadertoyMain = R"glsl(#ifdef RM_VIEW
-vec4 rm_view(vec4 color, vec2 fragCoord) {
-  bool bad = any(isnan(color)) || any(isinf(color));
+vec4 rm_view(vec4 rm_color, vec2 rm_fragCoord) {
+  bool rm_bad = any(isnan(rm_color)) || any(isinf(rm_color));
 #if RM_VIEW == 4
-  float grey = dot(clamp(color.rgb, 0.0, 1.0), vec3(0.2126, 0.7152, 0.0722));
-  return bad ? vec4(1.0, 0.0, 1.0, 1.0) : vec4(vec3(0.2 + 0.6 * grey), 1.0);
+  float rm_grey = dot(clamp(rm_color.rgb, 0.0, 1.0), vec3(0.2126, 0.7152, 0.0722));
+  return rm_bad ? vec4(1.0, 0.0, 1.0, 1.0) : vec4(vec3(0.2 + 0.6 * rm_grey), 1.0);
 #elif defined(RM_VIEWS_GLSL)
-  return rmView(color, fragCoord, iResolution, bad);
+  return rmView(rm_color, rm_fragCoord, iResolution, rm_bad);
 #else
 #error "this view needs a scene that marches with shaderlib (rm/march.glsl)"
 #endif
 }
 #endif
 void main() {
-  vec4 color = vec4(0.0, 0.0, 0.0, 1.0);
-  vec2 fragCoord = gl_FragCoord.xy;
-  mainImage(color, fragCoord);
+  vec4 rm_color = vec4(0.0, 0.0, 0.0, 1.0);
+  vec2 rm_fragCoord = gl_FragCoord.xy;
+  mainImage(rm_color, rm_fragCoord);
 #ifdef RM_VIEW
-  color = rm_view(color, fragCoord);
+  rm_color = rm_view(rm_color, rm_fragCoord);
 #endif
-  rm_FragColor = color;
+  rm_FragColor = rm_color;
 })glsl";
 
 // GLSL 1.10/1.20 and ES 1.00 names mapped onto a 4.50 core profile.

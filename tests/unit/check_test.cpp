@@ -101,7 +101,7 @@ TEST(Check, SyntaxErrorAtAFilesEndIsPutThere) {
 // keyword in capitals, and the column is found from it.
 TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
   TempDir dir;
-  write_file(dir / "scene.frag", "#define color 1.0\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  write_file(dir / "scene.frag", "#define rm_color 1.0\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
   Diagnostics diags;
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
@@ -148,6 +148,26 @@ TEST(Check, ErrorFromACommandLineDefineNamesTheCommandLine) {
   check_scene(dir / "scene.frag", opts, &diags);
   ASSERT_GE(count_errors(diags), 1);
   EXPECT_EQ(diags[0].path, (dir / "scene.frag").string());  // where the macro is used
+}
+
+// The host's main() keeps its own names out of the scene's way: macros
+// named color or fragCoord, the obvious names for its locals, break nothing.
+TEST(Check, MacrosNamedLikeShadertoysLocalsAreTheScenesOwn) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#define color vec4(0.5)\n#define fragCoord (f * 2.0)\n#define dir 1.0\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = color + vec4(fragCoord, dir, 1.0); }\n");
+  write_file(dir / "cube.frag", "#define color vec4(0.5)\n#define st 1.0\n#define dir 1.0\n"
+                                "void mainCubemap(out vec4 c, in vec2 f, in vec3 o, in vec3 d) { c = color * st * dir; }\n");
+  for (const char* name : {"scene.frag", "cube.frag"}) {
+    Diagnostics diags;
+    check_scene(dir / name, {}, &diags);
+    EXPECT_EQ(join(diags), "") << name;
+  }
+  SourceOptions view;
+  view.defines = {{"RM_VIEW", "4"}};
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", view, &diags);
+  EXPECT_EQ(join(diags), "");
 }
 
 TEST(Check, WrongMainImageSignatureIsAttributedToTheScene) {
