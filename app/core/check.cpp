@@ -79,13 +79,8 @@ int column_in_line(const std::string& message, const std::string& line_text) {
       // A keyword: glslang names it in capitals (VOID, VEC3, RETURN).
       std::string keyword = token;
       for (char& c : keyword) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      for (size_t at = line_text.find(keyword); at != std::string::npos; at = line_text.find(keyword, at + 1)) {
-        const size_t after = at + keyword.size();
-        if ((at == 0 || !lexing::is_word_char(line_text[at - 1])) &&
-            (after == line_text.size() || !lexing::is_word_char(line_text[after])))
-          return static_cast<int>(at) + 1;
-      }
-      return 0;
+      const std::optional<size_t> at = lexing::find_word(line_text, keyword);
+      return at ? static_cast<int>(*at) + 1 : 0;
     }
   }
   const size_t open = message.find('\'');

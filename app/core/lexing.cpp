@@ -57,9 +57,16 @@ bool any_word(std::string_view text, Visit visit) {
 
 }  // namespace
 
-bool has_word(std::string_view text, std::string_view word) {
-  return any_word(text, [&](size_t begin, size_t end) { return text.substr(begin, end - begin) == word; });
+std::optional<size_t> find_word(std::string_view text, std::string_view word) {
+  std::optional<size_t> found;
+  any_word(text, [&](size_t begin, size_t end) {
+    if (text.substr(begin, end - begin) == word) found = begin;
+    return found.has_value();
+  });
+  return found;
 }
+
+bool has_word(std::string_view text, std::string_view word) { return find_word(text, word).has_value(); }
 
 bool has_call(std::string_view text, std::string_view name, std::string_view after) {
   std::string_view previous;

@@ -32,6 +32,8 @@ std::optional<Directive> directive(std::string_view line);
 // Whether `rest` holds nothing more than blanks and perhaps a // comment.
 bool nothing_but_comment(std::string_view rest);
 
+// Where `text` first names `word` as a whole word.
+std::optional<size_t> find_word(std::string_view text, std::string_view word);
 // Whether `text` names `word` as a whole word.
 bool has_word(std::string_view text, std::string_view word);
 // Whether `text` has `name` as a whole word followed by '(' (blanks and
