@@ -10,16 +10,16 @@
 namespace rm {
 namespace {
 
-// The final text without comments, one string per line.
-std::vector<std::string> code_lines(const Source& source) {
-  const std::string code = lexing::strip_comments(source.text);
-  std::vector<std::string> lines;
+// Calls visit(line, number) for each line of `code` (1-based numbers) until
+// it returns false. Lines are views: a text of 10 million lines is not copied.
+template <typename Visit>
+void for_each_line(std::string_view code, Visit visit) {
+  int number = 0;
   for (size_t at = 0; at <= code.size();) {
     const size_t end = std::min(code.find('\n', at), code.size());
-    lines.emplace_back(code, at, end - at);
+    if (!visit(code.substr(at, end - at), ++number)) return;
     at = end + 1;
   }
-  return lines;
 }
 
 bool opens_conditional(std::string_view name) { return name == "if" || name == "ifdef" || name == "ifndef"; }
@@ -33,16 +33,16 @@ int file_of(const Source& source, int final_line) {
 }  // namespace
 
 std::optional<LeftOpen> conditional_left_open(const Source& source) {
-  const std::vector<std::string> lines = code_lines(source);
   std::vector<LeftOpen> open;
-  for (size_t i = 0; i < lines.size(); ++i) {
-    const auto d = lexing::directive(lines[i]);
-    if (!d) continue;
-    if (opens_conditional(d->name))
-      open.push_back({static_cast<int>(i) + 1, static_cast<int>(d->hash) + 1, "unterminated #" + std::string(d->name)});
-    else if (d->name == "endif" && !open.empty())
-      open.pop_back();
-  }
+  for_each_line(lexing::strip_comments(source.text), [&](std::string_view line, int number) {
+    if (const auto d = lexing::directive(line)) {
+      if (opens_conditional(d->name))
+        open.push_back({number, static_cast<int>(d->hash) + 1, "unterminated #" + std::string(d->name)});
+      else if (d->name == "endif" && !open.empty())
+        open.pop_back();
+    }
+    return true;
+  });
   if (open.empty()) return std::nullopt;
   return open.back();
 }
@@ -57,24 +57,24 @@ std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_l
   // inside a block goes on after an error in it.
   for (size_t i = 0; i < source.line_map.size(); ++i)
     if (source.line_map[i].file >= 0) files[source.line_map[i].file].last_line = static_cast<int>(i) + 1;
-  const std::vector<std::string> lines = code_lines(source);
   std::vector<bool> in_later_branch;  // per open conditional
-  for (int number = 1; number < error_line && static_cast<size_t>(number) <= lines.size(); ++number) {
-    const std::string& line = lines[static_cast<size_t>(number) - 1];
+  for_each_line(lexing::strip_comments(source.text), [&](std::string_view line, int number) {
+    if (number >= error_line) return false;
     if (const auto d = lexing::directive(line)) {
       if (opens_conditional(d->name)) in_later_branch.push_back(false);
       else if ((d->name == "else" || d->name == "elif") && !in_later_branch.empty()) in_later_branch.back() = true;
       else if (d->name == "endif" && !in_later_branch.empty()) in_later_branch.pop_back();
-      continue;
+      return true;
     }
     const int file = file_of(source, number);
-    if (file < 0 || std::find(in_later_branch.begin(), in_later_branch.end(), true) != in_later_branch.end()) continue;
+    if (file < 0 || std::find(in_later_branch.begin(), in_later_branch.end(), true) != in_later_branch.end()) return true;
     std::vector<LeftOpen>& open = files[file].open;
     for (size_t i = 0; i < line.size(); ++i) {
       if (line[i] == '{') open.push_back({number, static_cast<int>(i) + 1, "'{' : not closed before the end of the file"});
       else if (line[i] == '}' && !open.empty()) open.pop_back();
     }
-  }
+    return true;
+  });
   const FileState* first = nullptr;
   for (const auto& [file, state] : files)
     if (!state.open.empty() && state.last_line < error_line && (!first || state.last_line < first->last_line))
@@ -89,15 +89,22 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, int e
   const size_t at = message.find(unexpected);
   const size_t token_end = at == std::string::npos ? at : message.find_first_of(", ", at + unexpected.size());
   if (token_end == std::string::npos || column == 0) return std::nullopt;
-  const std::vector<std::string> lines = code_lines(source);
-  if (error_line < 1 || static_cast<size_t>(error_line) > lines.size()) return std::nullopt;
-  const std::string& failing = lines[static_cast<size_t>(error_line) - 1];
-  if (lexing::skip_blanks(failing, 0) + 1 != static_cast<size_t>(column)) return std::nullopt;  // not its first token
+  const std::string code = lexing::strip_comments(source.text);
+  size_t failing_at = std::string::npos;  // where the error's line starts
+  for_each_line(code, [&](std::string_view line, int number) {
+    if (number == error_line) failing_at = static_cast<size_t>(line.data() - code.data());
+    return number < error_line;
+  });
+  if (failing_at == std::string::npos) return std::nullopt;
+  if (lexing::skip_blanks(code, failing_at) + 1 - failing_at != static_cast<size_t>(column)) return std::nullopt;
   // Back to the code before it, past whole conditionals (the host's
   // #ifdef RM_VIEW): had one been compiled, the error would be in it.
   int depth = 0;
+  size_t begin = failing_at;
   for (int number = error_line - 1; number >= 1; --number) {
-    const std::string& line = lines[static_cast<size_t>(number) - 1];
+    const size_t end = begin - 1;  // the '\n' before the line below
+    begin = end == 0 ? 0 : code.rfind('\n', end - 1) + 1;  // npos + 1 is 0: the first line
+    const std::string_view line = std::string_view(code).substr(begin, end - begin);
     if (const auto d = lexing::directive(line)) {
       if (d->name == "endif") ++depth;
       else if (opens_conditional(d->name) && depth > 0) --depth;
