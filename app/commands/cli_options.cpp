@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -107,6 +108,12 @@ std::chrono::system_clock::time_point parse_date(const std::string& text) {
   tm.tm_hour = std::stoi(m[4].str());
   tm.tm_min = std::stoi(m[5].str());
   const double seconds = std::stod(m[6].str());
+  // mktime would carry a 13th month or a 30th of February into a later date.
+  const std::chrono::year_month_day day{std::chrono::year{tm.tm_year + 1900}, std::chrono::month(tm.tm_mon + 1),
+                                        std::chrono::day(tm.tm_mday)};
+  if (!day.ok()) throw UsageError{"--date '" + text + "': no such day"};
+  if (tm.tm_hour > 23 || tm.tm_min > 59 || seconds >= 60)
+    throw UsageError{"--date '" + text + "': no such time of day (00:00:00 to 23:59:59.999)"};
   tm.tm_sec = static_cast<int>(seconds);
   tm.tm_isdst = -1;
   const std::time_t t = std::mktime(&tm);

@@ -331,6 +331,11 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --size big", "--size 'big'"},
       {"render " + g + " -o " + out + " --mouse 1,2,3", "--mouse '1,2,3'"},
       {"render " + g + " -o " + out + " --mouse a,b", "--mouse 'a'"},
+      // A date mktime would carry into another one is none.
+      {"render " + g + " -o " + out + " --date 2020-02-30T00:00:00", "--date '2020-02-30T00:00:00': no such day"},
+      {"render " + g + " -o " + out + " --date 2021-13-01T00:00:00", "--date '2021-13-01T00:00:00': no such day"},
+      {"render " + g + " -o " + out + " --date 2020-01-01T24:00:00", "--date '2020-01-01T24:00:00': no such time of day"},
+      {"render " + g + " -o " + out + " --date 2020-01-01T12:00:60.5", "--date '2020-01-01T12:00:60.5': no such time of day"},
       {"render " + g + " -o " + out + " --time soon", "--time 'soon'"},
       {"render " + g + " -o " + out + " --time nan", "--time 'nan'"},
       // The formats named are the ones that work: .jpg among them, not only .png and .exr.
