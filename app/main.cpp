@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,15 @@ namespace {
 // mistyped option would be reported as the missing one it was meant to be.
 // (And CLI11 2.1 lists the unexpected arguments last first.)
 std::string usage_error(const CLI::App& app, const CLI::ParseError& e) {
+  // An option of one value given twice: CLI11 says "--size: At Most 1 required but received 2".
+  static const std::regex given_twice(R"(^(\S+): At Most 1 required but received (\d+)$)");
+  std::cmatch m;
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr && std::regex_match(e.what(), m, given_twice))
+    return m[1].str() + " was given " + m[2].str() + " times; it takes one value";
+  // ... and one given last with no value: "--size: 1 required WxH missing".
+  static const std::regex no_value(R"(^(\S+): 1 required (.+) missing$)");
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr && std::regex_match(e.what(), m, no_value))
+    return m[1].str() + " needs a value: " + m[2].str();
   if (dynamic_cast<const CLI::RequiredError*>(&e) == nullptr && dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr)
     return e.what();
   const std::vector<std::string> unexpected = app.remaining(true);  // with the subcommand's, in order

@@ -355,6 +355,9 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       // the unexpected arguments in the order given.
       {"render " + g + " --ouptut " + out, "not expected: --ouptut " + out + " ("},
       {"render " + g + " -o " + out + " -x 3 -y", "not expected: -x 3 -y (see raymarching render --help)"},
+      {"render " + g + " -o " + out + " -o " + out, "--output was given 2 times; it takes one value (see raymarching render --help)"},
+      {"--size 10x10 --size 20x20 " + g, "--size was given 2 times; it takes one value (see raymarching --help)"},
+      {"render " + g + " -o " + out + " --size", "--size needs a value: WxH (see raymarching render --help)"},
       {"render " + g + " -o " + out + " --timeout 0", "--timeout"},
       // NaN passes CLI11's Range; a number past the clock's reach overflowed it.
       {"render " + g + " -o " + out + " --timeout nan", "--timeout: 'nan' is not a number from 0.001 to 1e+08"},
