@@ -53,6 +53,12 @@ std::string over(std::uintmax_t bytes, std::uintmax_t limit, const char* what) {
 
 std::string over_the_limit(std::uintmax_t bytes) { return over(bytes, kMaxShaderBytes, "shader files"); }
 
+bool is_under(const std::filesystem::path& file, const std::filesystem::path& dir) {
+  if (dir.empty()) return false;
+  const std::filesystem::path rel = file.lexically_normal().lexically_relative(dir.lexically_normal());
+  return !rel.empty() && *rel.begin() != "..";
+}
+
 bool exists_on_disk(const std::filesystem::path& path) {
   std::error_code ec;
   return std::filesystem::exists(path, ec);

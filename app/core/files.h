@@ -22,6 +22,9 @@ std::optional<std::string> unreadable_because(const std::filesystem::path& path)
 // Whether anything is at `path`; false, not an exception, when it cannot be told.
 bool exists_on_disk(const std::filesystem::path& path);
 
+// Whether `file` lies inside `dir` (both compared lexically; false when dir is empty).
+bool is_under(const std::filesystem::path& file, const std::filesystem::path& dir);
+
 // The bytes of the shader file at `path`: a regular file, refused by its
 // size when it holds more than kMaxShaderBytes. nullopt with *error set in
 // the words above.

@@ -202,7 +202,10 @@ std::optional<VersionInfo> parse_version(std::string_view line) {
 
 class Preprocessor {
  public:
-  Preprocessor(const SourceOptions& options, const FileSystem& files) : options_(options), fs_(files) {}
+  Preprocessor(const SourceOptions& options, const FileSystem& files)
+      : options_(options),
+        fs_(files),
+        shaderlib_dir_(options.shaderlib_dir.empty() ? fs::path() : fs::absolute(options.shaderlib_dir).lexically_normal()) {}
 
   Source run(const fs::path& scene) {
     fs::path first = fs::absolute(scene).lexically_normal();
@@ -285,15 +288,18 @@ class Preprocessor {
     return defined_on_command_line("HW_PERFORMANCE") ? std::string() : "#define HW_PERFORMANCE 1\n";
   }
 
-  // Whether `line` is a #define of a macro the options set (a -D) or forbid.
-  bool defines_overridden_macro(std::string_view line) const {
+  // Whether `line` of `file` is a #define of a macro the options set (a -D)
+  // or forbid (a -U). A -U reaches the scene's own files only: shaderlib's
+  // defaults (#ifndef RM_MAX_STEPS ...) then hold, as without the scene's #define.
+  bool defines_overridden_macro(std::string_view line, int file) const {
     auto d = lexing::directive(line);
     if (!d || d->name != "define") return false;
     size_t end = 0;
     while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
     const std::string_view name = d->rest.substr(0, end);
-    return defined_on_command_line(name) ||
-           std::find(options_.undefines.begin(), options_.undefines.end(), name) != options_.undefines.end();
+    if (defined_on_command_line(name)) return true;
+    return std::find(options_.undefines.begin(), options_.undefines.end(), name) != options_.undefines.end() &&
+           !is_under(out_.files[static_cast<size_t>(file)], shaderlib_dir_);
   }
 
   // One line of `file`: kept for the body, or a directive the host handles.
@@ -302,7 +308,7 @@ class Preprocessor {
     if (!out_.ok()) return false;
     // A #define the command line overrides is read as a blank line, with
     // the lines its backslashes continue it onto: lines keep their numbers.
-    if (in_dropped_define_ || defines_overridden_macro(line)) {
+    if (in_dropped_define_ || defines_overridden_macro(line, file)) {
       in_dropped_define_ = !line.empty() && line.back() == '\\';
       add_body_line("", Origin{file, line_no});
       return true;
@@ -472,6 +478,7 @@ class Preprocessor {
 
   const SourceOptions& options_;
   const FileSystem& fs_;
+  const fs::path shaderlib_dir_;  // absolute: the files shaderlib's, which a -U leaves alone
   Source out_;
   std::uintmax_t total_bytes_ = 0;  // of every file read, held to kMaxShaderBytes
   std::unordered_map<std::string, int> file_index_;  // path -> index in out_.files

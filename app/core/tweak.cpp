@@ -7,6 +7,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/files.h"
 #include "core/lexing.h"
 
 namespace rm {
@@ -14,12 +15,6 @@ namespace rm {
 namespace {
 
 constexpr char kMark = '\x01';
-
-bool under(const fs::path& file, const fs::path& dir) {
-  if (dir.empty()) return false;
-  const fs::path rel = file.lexically_normal().lexically_relative(dir.lexically_normal());
-  return !rel.empty() && *rel.begin() != "..";
-}
 
 // A float literal by its spelling: a '.' or an exponent, not hex, not a double.
 bool is_float_literal(std::string_view token) {
@@ -97,7 +92,7 @@ LiftedLiterals lift_literals(const Source& source, const fs::path& shaderlib_dir
     return out;
   }
   std::vector<bool> user_file(source.files.size());
-  for (size_t f = 0; f < source.files.size(); ++f) user_file[f] = !under(source.files[f], shaderlib_dir);
+  for (size_t f = 0; f < source.files.size(); ++f) user_file[f] = !is_under(source.files[f], shaderlib_dir);
   auto user_line = [&](size_t line) {
     if (line >= source.line_map.size()) return false;
     const int file = source.line_map[line].file;

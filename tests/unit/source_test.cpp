@@ -211,6 +211,23 @@ TEST(Source, UndefinesDropTheScenesDefinitionWithoutSettingIt) {
   EXPECT_TRUE(validate(s).empty());
 }
 
+// A -U reaches the scene's own files, not shaderlib's: its default for the
+// macro holds, as if the scene had never defined it (a C compiler's -U,
+// which undoes a definition given before it, leaves a header's own too).
+TEST(Source, UndefinesLeaveShaderlibsOwnDefinitions) {
+  TempDir dir;
+  write_file(dir / "lib/rm/knob.glsl", "#ifndef KNOB\n#define KNOB 2.0\n#endif\nfloat knob() { return KNOB; }\n");
+  write_file(dir / "scene.frag", "#define KNOB 3.0\n#include <rm/knob.glsl>\n" + std::string(kMain));
+  SourceOptions opts;
+  opts.shaderlib_dir = dir / "lib";
+  opts.undefines = {"KNOB"};
+  Source s = preprocess(dir / "scene.frag", opts);
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.text.find("#define KNOB 3.0"), std::string::npos);
+  EXPECT_NE(s.text.find("#define KNOB 2.0"), std::string::npos);
+  EXPECT_TRUE(validate(s).empty());
+}
+
 TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
   TempDir dir;
   write_file(dir / "scene.frag",
