@@ -125,12 +125,59 @@ std::string unresolved_function(const std::string& message) {
   return message.substr(prefix.size(), message.size() - prefix.size() - 1);
 }
 
+// The entry points the host's main() calls, as it calls them.
+constexpr std::pair<const char*, const char*> kEntryPoints[] = {
+    {"mainImage", "(out vec4, in vec2)"},
+    {"mainCubemap", "(out vec4, in vec2, in vec3, in vec3)"},
+};
+
+// Where the scene's code makes the host's line `final_line` fail: the scene's
+// entry point where the host's call finds no match for it, or the scene's
+// last #define before that line of a word the line uses. The final text's
+// line and column, and what to say there; nullopt when neither is found.
+struct HostLineCause {
+  int final_line = 0, column = 0;
+  std::string message;
+};
+std::optional<HostLineCause> host_line_cause(const Source& source, int final_line, const std::string& message) {
+  for (const auto& [name, parameters] : kEntryPoints)
+    if (message == "'" + std::string(name) + "' : no matching overloaded function found")
+      if (const auto at = first_mention_of_function(name, source); at && !source.locate(at->first).first.empty())
+        return HostLineCause{at->first, at->second,
+                             "'" + std::string(name) + "' : the host calls " + name + parameters +
+                                 ", and no " + name + " takes those parameters"};
+  const std::string host_line = source.final_line_text(final_line);
+  std::optional<HostLineCause> cause;
+  std::istringstream code(lexing::strip_comments(source.text));
+  int number = 0;
+  for (std::string line; number + 1 < final_line && std::getline(code, line);) {
+    ++number;
+    const auto d = lexing::directive(line);
+    if (!d || d->name != "define") continue;
+    size_t end = 0;
+    while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
+    const std::string name(d->rest.substr(0, end));
+    if (end == 0 || !lexing::has_word(host_line, name) || source.locate(number).first.empty()) continue;
+    cause = HostLineCause{number, static_cast<int>(d->rest_at) + 1,
+                          "the scene's #define " + name + " changes the code the host adds around the scene: " + message};
+  }
+  return cause;
+}
+
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
   Diagnostic d;
   d.severity = severity;
   auto [path, line] = source.locate(final_line);
   if (path.empty()) {
     // A line the host added (wrapper or prelude): the cause is in the scene.
+    if (const auto cause = host_line_cause(source, final_line, message)) {
+      auto [cause_path, cause_line] = source.locate(cause->final_line);
+      d.path = cause_path;
+      d.line = cause_line;
+      d.column = cause->column;
+      d.message = cause->message;
+      return d;
+    }
     d.path = source.files.empty() ? std::string() : source.files.front().string();
     d.message = "in the code the host adds around the scene: " + message;
   } else {

@@ -96,17 +96,18 @@ TEST(Check, SyntaxErrorAtAFilesEndIsPutThere) {
                              ":1:16: error: '' :  syntax error at the end of the file, expecting RIGHT_PAREN\n");
 }
 
-// A scene's macro that breaks the host's main() is not at the scene's end,
-// and an error in the middle of a line is where glslang says: it names a
-// keyword in capitals, and the column is found from it.
+// A scene's macro that breaks the host's main() is not what the scene left
+// open at its end: it is named at its #define. And an error in the middle of
+// a line is where glslang says: it names a keyword in capitals, and the
+// column is found from it.
 TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
   TempDir dir;
   write_file(dir / "scene.frag", "#define rm_color 1.0\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
   Diagnostics diags;
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
-                             ": error: in the code the host adds around the scene: '' :  syntax error, unexpected "
-                             "FLOATCONSTANT, expecting COMMA or SEMICOLON\n");
+                             ":1:9: error: the scene's #define rm_color changes the code the host adds around the "
+                             "scene: '' :  syntax error, unexpected FLOATCONSTANT, expecting COMMA or SEMICOLON\n");
 
   write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0) return; }\n");
   check_scene(dir / "scene.frag", {}, &diags);
@@ -170,14 +171,37 @@ TEST(Check, MacrosNamedLikeShadertoysLocalsAreTheScenesOwn) {
   EXPECT_EQ(join(diags), "");
 }
 
-TEST(Check, WrongMainImageSignatureIsAttributedToTheScene) {
+// The host's call finds no mainImage (or mainCubemap) to take its arguments:
+// the error is at the scene's own, in the file that defines it, and says what
+// the host calls.
+TEST(Check, WrongMainImageSignatureIsNamedWhereTheSceneDefinesIt) {
   TempDir dir;
-  write_file(dir / "scene.frag", "void mainImage(out vec4 c) { c = vec4(1.0); }\n");
+  write_file(dir / "lib.glsl", "// the scene's code\n\nvoid mainImage(out vec3 c, in vec2 f) { c = vec3(1.0); }\n");
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\n");
   Diagnostics diags;
   check_scene(dir / "scene.frag", {}, &diags);
-  ASSERT_GE(count_errors(diags), 1);
-  EXPECT_EQ(diags[0].path, (dir / "scene.frag").string());
-  EXPECT_NE(diags[0].message.find("the host adds"), std::string::npos);
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() +
+                             ":3:6: error: 'mainImage' : the host calls mainImage(out vec4, in vec2), and no "
+                             "mainImage takes those parameters\n");
+
+  write_file(dir / "cube_a.frag", "void mainCubemap(out vec4 c, in vec2 f, in vec3 o) { c = vec4(1.0); }\n");
+  check_scene(dir / "cube_a.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "cube_a.frag").string() +
+                             ":1:6: error: 'mainCubemap' : the host calls mainCubemap(out vec4, in vec2, in vec3, "
+                             "in vec3), and no mainCubemap takes those parameters\n");
+}
+
+// Any other error in the host's code that a word of the scene's #defines is
+// on: named at that #define (the last before it), in the file that has it.
+TEST(Check, ASceneMacroThatBreaksTheHostsCodeIsNamedAtItsDefine) {
+  TempDir dir;
+  write_file(dir / "lib.glsl", "#define R iResolution\n#define vec4 float\n");
+  write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n#include \"lib.glsl\"\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() +
+                             ":2:9: error: the scene's #define vec4 changes the code the host adds around the scene: "
+                             "'constructor' : too many arguments\n");
 }
 
 // A function declared but defined nowhere: the driver's link refuses it, so
