@@ -28,12 +28,6 @@ void ScaleController::measured(double scale, double ms, double overhead_ms) {
   overheads_[next_] = std::max(0.0, overhead_ms);
   next_ = (next_ + 1) % estimates_.size();
   count_ = std::min(count_ + 1, 3);
-  const double full = full_frame_ms(), fixed = this->overhead_ms();
-  auto first_step_under = [&](double share, int to) {  // the largest picture under `share` of the budget
-    for (int k = 0; k < to; ++k)
-      if (full * scale_of(k) * scale_of(k) + fixed <= share * budget_ms_) return k;
-    return to;
-  };
   // Over budget where it is: down at once, as far as the estimate says.
   const int hold = std::min(first_step_under(kHoldAt, kSteps), kSteps - 1);
   if (hold > step_) {
@@ -49,6 +43,23 @@ void ScaleController::measured(double scale, double ms, double overhead_ms) {
   } else if (raise >= step_) {
     raise_votes_ = 0;
   }
+}
+
+int ScaleController::first_step_under(double share, int to) const {
+  const double full = full_frame_ms(), fixed = overhead_ms();
+  for (int k = 0; k < to; ++k)
+    if (full * scale_of(k) * scale_of(k) + fixed <= share * budget_ms_) return k;
+  return to;
+}
+
+void ScaleController::resized(double pixels) {
+  if (pixels <= 0 || pixels == full_pixels_) return;
+  if (full_pixels_ > 0 && count_ > 0) {
+    for (int i = 0; i < count_; ++i) estimates_[static_cast<size_t>(i)] *= pixels / full_pixels_;
+    step_ = std::min(first_step_under(kHoldAt, kSteps), kSteps - 1);
+    raise_votes_ = 0;
+  }
+  full_pixels_ = pixels;
 }
 
 void ScaleController::forget() {

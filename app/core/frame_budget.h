@@ -42,9 +42,19 @@ class ScaleController {
   double predict_ms(double scale) const { return full_frame_ms() * scale * scale; }
   // Forget the measurements (a new program costs what it costs).
   void forget();
+  // The window's full size is now `pixels`: the estimates, made at the size
+  // before, grow or shrink with it, and the scale is chosen again from them
+  // at once. (A window made larger would else draw its next frame at the old
+  // scale: many budgets long, in one tile.) The first call only records it.
+  void resized(double pixels);
 
  private:
+  // The largest picture (the smallest step up to `to`) whose estimate fits
+  // under `share` of the budget.
+  int first_step_under(double share, int to) const;
+
   double budget_ms_;
+  double full_pixels_ = 0;  // the window's pixels the estimates are for; 0: not told
   int step_ = 0;
   std::array<double, 3> estimates_{};  // full-size ms of the last frames
   std::array<double, 3> overheads_{};  // and what each cost besides its drawing

@@ -528,6 +528,7 @@ class WindowApp {
 
     const bool moving = advance && ((use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f);
     if (moving) last_moving_start_ = steady_ns();
+    budget_.resized(double(width) * height);
     const bool budget_on = budget_.budget_ms() > 0;
     const bool scaled = moving && budget_on && !project_.has_feedback();
     // Nothing has measured a new program's buffers yet, and they are drawn

@@ -7,9 +7,10 @@ minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
-built while the running one keeps drawing; a project whose heavy pass is a buffer
-has its first picture at the smallest scale, its buffer drawn in tiles, and Q
-quits within 1 s while it draws; a runaway buffer is reported too slow with its
+built while the running one keeps drawing; a light animated scene keeps
+its first picture, and made larger it is scaled before its next; a project
+whose heavy pass is a buffer has its first picture at the smallest scale,
+its buffer drawn in tiles, and Q quits within 1 s while it draws; a runaway buffer is reported too slow with its
 own file; an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
@@ -327,6 +328,17 @@ def light_first_picture_kept(work):
     check("its first picture is drawn at full size, not dropped for a smaller one",
           first is not None and float(first.group(3)) == 1.0 and "drawn again at scale" not in open(err).read(),
           open(err).read()[-500:])
+    # The window made 16 times as large: its next picture is scaled by what
+    # the pixels say before it is drawn, not drawn at the old scale first
+    # (about 270 ms here, in one tile, before the scale caught up).
+    time.sleep(0.5)
+    marker = len(open(err).read())
+    xdotool("windowsize", window, 1280, 720)
+    after = wait_for(lambda: re.search(r"framebuffer 1280x720.*?picture \d+x\d+ scale ([0-9.e-]+) in \d+ tiles?, "
+                                       r"([0-9.]+) ms", open(err).read()[marker:], re.S), timeout=10)
+    check("made larger, its next picture is scaled down, or fits the budget at full size",
+          after is not None and (float(after.group(1)) < 1.0 or float(after.group(2)) < 100.0),
+          open(err).read()[marker:][-500:])
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
 

@@ -131,6 +131,33 @@ TEST(ScaleController, ForgetStartsAgainFromTheNextFrame) {
   EXPECT_NEAR(c.full_frame_ms(), 1.0 / (c.scale() * c.scale()), 1e-9);
 }
 
+// A window made larger costs more at once: the scale drops before its first
+// frame at the new size, as far as the pixels say, and that frame fits; made
+// smaller again, the scale comes back up at once. (Before, the first frames
+// after 320x180 became 1900x1000 were drawn at full size: 270 ms each.)
+TEST(ScaleController, AResizedWindowIsScaledAtOnceByItsPixels) {
+  ScaleController c(kBudget);
+  double pixels = 320.0 * 180;
+  c.resized(pixels);
+  auto cost = [&](double s) { return 8.5 * (pixels / (320.0 * 180)) * s * s; };
+  run(c, 10, cost);
+  EXPECT_EQ(c.scale(), 1.0);
+  pixels = 1900.0 * 1000;
+  c.resized(pixels);
+  EXPECT_NEAR(c.full_frame_ms(), cost(1.0), 1e-6);
+  EXPECT_LE(cost(c.scale()), ScaleController::kHoldAt * kBudget);
+  EXPECT_LT(c.scale(), 0.4);
+  const double scale_large = c.scale();
+  run(c, 10, cost);
+  EXPECT_EQ(c.scale(), scale_large) << "the scale chosen at the resize was the one the frames hold";
+  pixels = 320.0 * 180;
+  c.resized(pixels);
+  EXPECT_EQ(c.scale(), 1.0);
+  c.resized(0);  // a minimised window: nothing to scale
+  EXPECT_EQ(c.scale(), 1.0);
+  EXPECT_NEAR(c.full_frame_ms(), 8.5, 1e-6);
+}
+
 // Every pixel in exactly one tile.
 void expect_covers_once(glm::ivec2 size, const std::vector<glm::ivec4>& tiles) {
   std::vector<int> hits(static_cast<size_t>(size.x) * size.y, 0);
