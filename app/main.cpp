@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
   const rm::cli::ImportCommand import(app);
   // Each help shows what its command takes: the window's keys only in the
   // window's (set after the subcommands, which would inherit them).
-  const std::string exit_status = "\nexit status: 0 ok, 1 shader error, 2 usage or I/O error, 124 render --timeout passed";
+  const std::string exit_status = "\nexit status: 0 ok, 1 shader error, 2 usage or I/O error, 124 render --timeout passed,\n"
+      "128+N stopped by signal N";
   app.footer(std::string("\n") + rm::window_keys_help() + exit_status);
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) command->footer(exit_status);
 

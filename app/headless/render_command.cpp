@@ -15,7 +15,7 @@
 #include "core/renderer.h"
 #include "core/user_uniforms.h"
 #include "core/scene.h"
-#include "headless/deadline.h"
+#include "headless/run_guard.h"
 #include "headless/egl_context.h"
 #include "headless/progress.h"
 #include "headless/video.h"
@@ -115,9 +115,9 @@ int render_command(const RenderRequest& req) {
 
   char limit[64];
   std::snprintf(limit, sizeof limit, "--timeout %g", req.timeout);
-  // Declared before the deadline, whose watch may abandon it until the deadline is gone.
+  // Declared before the guard, whose watch may abandon it until the guard is gone.
   std::unique_ptr<VideoEncoder> encoder;
-  Deadline deadline(req.timeout, limit);
+  RunGuard guard(req.timeout, limit);
   // The glslang worker starts while EGL opens the display.
   GlslangWarmUp glslang(kHostVersionLine);
   std::string error;
@@ -243,7 +243,7 @@ int render_command(const RenderRequest& req) {
   if (video) {
     encoder = VideoEncoder::start(req.out, video_settings, &error);
     if (!encoder) return fail(error, kExitUsage);
-    deadline.on_expiry([&encoder] { encoder->abandon(); }, "the video it was writing");
+    guard.on_end([&encoder] { encoder->abandon(); }, "the video it was writing");
   }
   // A slice of a take: the keys and knobs of the frames before it, without drawing them.
   for (int i = 0; replay && i < first; ++i) {
@@ -259,10 +259,10 @@ int render_command(const RenderRequest& req) {
     Image image = graph.render_frame(project, in, req.size, req.samples, motion);
     graph.keyboard().end_frame();
     if (video) {
-      if (!deadline.guard([&] { return encoder->add(image, &error); })) return fail(error, kExitUsage);
+      if (!guard.guard([&] { return encoder->add(image, &error); })) return fail(error, kExitUsage);
     } else {
       const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
-      const bool written = deadline.write(out, [&] {
+      const bool written = guard.write(out, [&] {
         return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples, motion), Overwrite::Replace,
                            &error).has_value();
       });
@@ -270,7 +270,7 @@ int render_command(const RenderRequest& req) {
     }
     if (sequence || warm_up) progress.show(total - count + n + 1);
   }
-  if (video && !deadline.write(req.out, [&] { return encoder->finish(&error); })) return fail(error, kExitUsage);
+  if (video && !guard.write(req.out, [&] { return encoder->finish(&error); })) return fail(error, kExitUsage);
   return kExitOk;
 }
 

@@ -32,7 +32,7 @@ struct RenderRequest {
   std::optional<std::chrono::system_clock::time_point> date;  // default: now
   View view = View::Picture;  // --view: a debug view instead of the picture
   std::vector<std::string> sets;  // --set NAME=VALUE: the shader's own uniforms
-  double timeout = 0;  // seconds; 0: none (see headless/deadline)
+  double timeout = 0;  // seconds; 0: none (see headless/run_guard)
   int samples = 1;     // supersamples per pixel (core/supersampling.h)
   double shutter = 0;     // motion blur: the share of the frame interval the shutter is open
   int motion_samples = 1; // motion blur: steps over the open shutter

@@ -121,8 +121,16 @@ std::unique_ptr<VideoEncoder> VideoEncoder::start(const fs::path& path, const Vi
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // Its own process group: the terminal's Ctrl-C is the host's to handle
+  // (headless/run_guard.h), which abandons the video; ffmpeg would else
+  // finish a part of it on its own.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setpgroup(&attr, 0);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
   pid_t pid = 0;
-  const int err = posix_spawnp(&pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  const int err = posix_spawnp(&pid, "ffmpeg", &actions, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&actions);
   close(pipe_fds[0]);
   if (err != 0) {

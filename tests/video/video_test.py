@@ -5,8 +5,10 @@
 
 Each video is decoded again: its frame count, size and rate by ffprobe, and
 one frame by ffmpeg, compared with the PNG `render` draws of that frame. A
-missing, failing or killed ffmpeg, and a --timeout, leave no file under the
-output's name and no hidden one beside it.
+missing, failing or killed ffmpeg, a --timeout and a signal (SIGTERM,
+SIGINT) leave no file under the output's name and no hidden one beside it;
+a signal keeps the frames of a sequence written whole, and one ignored when
+the render began (nohup's SIGHUP) stays ignored.
 """
 import os
 import pty
@@ -179,6 +181,63 @@ class Video(unittest.TestCase):
                                    "the video it was writing is removed\n")
         time.sleep(0.2)
         self.assertEqual(leftovers(self.dir), ["moving.frag"])
+
+    def start_encoding(self, out):
+        """A long render of a video to `out`, once its ffmpeg runs and has frames."""
+        run = subprocess.Popen([BINARY, "render", str(ROOT / "examples" / "default.frag"), "-o", str(out),
+                                "--frames", "5000", "--size", "320x180"], stderr=subprocess.PIPE, text=True)
+        for _ in range(200):  # its ffmpeg starts once the scene is built
+            children = Path(f"/proc/{run.pid}/task/{run.pid}/children").read_text().split()
+            if any(Path(f"/proc/{c}/comm").read_text().strip() == "ffmpeg" for c in children):
+                break
+            time.sleep(0.05)
+        time.sleep(1.0)  # frames are on their way
+        self.assertEqual(leftovers(self.dir)[0][0], ".", "ffmpeg writes a hidden file while it encodes")
+        return run
+
+    def test_a_signal_stops_ffmpeg_and_removes_its_file(self):
+        # SIGTERM is what kill, Slurm's scancel and its time limit send.
+        run = self.start_encoding(self.dir / "stopped.mp4")
+        run.send_signal(signal.SIGTERM)
+        _, err = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 128 + signal.SIGTERM)
+        self.assertEqual(err, "raymarching: error: the render was stopped by SIGTERM; the video it was writing is "
+                              "removed\n")
+        time.sleep(0.2)
+        self.assertEqual(leftovers(self.dir), ["moving.frag"])
+
+    def test_a_signal_keeps_the_frames_of_a_sequence_written_whole(self):
+        # Ctrl-C (SIGINT) while frames are written: those done stay, each a
+        # whole picture, and no hidden file is left of the next.
+        run = subprocess.Popen([BINARY, "render", str(self.scene), "-o", str(self.dir / "f%05d.png"), "--frames",
+                                "100000", "--size", "160x90"], stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while len(leftovers(self.dir)) < 6 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        run.send_signal(signal.SIGINT)
+        _, err = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 128 + signal.SIGINT)
+        frames = [name for name in leftovers(self.dir) if name != "moving.frag"]
+        self.assertGreaterEqual(len(frames), 5)
+        self.assertEqual(err, f"raymarching: error: the render was stopped by SIGINT; the {len(frames)} frames it "
+                              "wrote are kept\n")
+        self.assertEqual(frames, [f"f{n:05d}.png" for n in range(len(frames))])
+        for name in (frames[0], frames[-1]):
+            info = subprocess.run(["oiiotool", "--info", str(self.dir / name)], capture_output=True, text=True)
+            self.assertIn("160 x   90", info.stdout, name)
+
+    def test_a_signal_ignored_when_the_render_began_stays_ignored(self):
+        # nohup ignores SIGHUP for the program it starts: the render goes on.
+        run = subprocess.Popen([BINARY, "render", str(self.scene), "-o", str(self.dir / "v.mp4"), "--frames", "48",
+                                "--size", "160x90"], stderr=subprocess.PIPE, text=True,
+                               preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))
+        deadline = time.monotonic() + 60
+        while not leftovers(self.dir)[0].startswith(".") and time.monotonic() < deadline:
+            time.sleep(0.02)
+        run.send_signal(signal.SIGHUP)
+        _, err = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 0, err)
+        self.assertEqual(probe(self.dir / "v.mp4")["nb_read_frames"], "48")
 
     def test_on_a_terminal_the_progress_bar_shows_the_count_the_rate_and_the_time_left(self):
         controller, terminal = pty.openpty()
