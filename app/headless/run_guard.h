@@ -1,13 +1,12 @@
 // What ends a headless run before its end: `render --timeout` passing, or a
-// signal (Ctrl-C's SIGINT, SIGTERM from kill or from Slurm's scancel and time
-// limit, SIGHUP). A draw call cannot be interrupted, so a watch thread ends
-// the process: one line on stderr, nothing partial left, and its own exit
-// status. A file being written is finished first, so no half file is left
-// under any name; a video being encoded is abandoned (on_end).
+// signal that asks it to stop (core/stop_signals.h). A draw call cannot be
+// interrupted, so a watch thread ends the process: one line on stderr,
+// nothing partial left, and its own exit status. A file being written is
+// finished first, so no half file is left under any name; a video being
+// encoded is abandoned (on_end).
 //  - The limit passes: every file the run wrote is removed; kExitTimeout.
 //  - A signal: the frames written whole are kept (a sequence stopped at
-//    frame 40 keeps 0 to 39); 128 + the signal's number, as a shell reports
-//    it. A signal ignored when the run began (nohup's SIGHUP) stays ignored.
+//    frame 40 keeps 0 to 39); 128 + the signal's number, as a shell reports it.
 #pragma once
 #include <filesystem>
 #include <functional>
@@ -16,12 +15,13 @@
 #include <thread>
 #include <vector>
 
+#include "core/stop_signals.h"
+
 namespace rm {
 
 class RunGuard {
  public:
   // seconds <= 0: no limit. `option` names it in the message ("--timeout 2").
-  // Signals are caught while the guard lives.
   RunGuard(double seconds, std::string option);
   ~RunGuard();  // the run ended: stops the watch, and signals act as before
   RunGuard(const RunGuard&) = delete;
@@ -41,11 +41,11 @@ class RunGuard {
   [[noreturn]] void end(int signal);  // 0: the limit passed
 
   std::string option_;
+  StopSignals signals_;
   std::mutex mutex_;  // held by a write, and by the watch when it ends the run
   std::vector<std::filesystem::path> written_;
   std::vector<std::function<void()>> undo_;
   std::string undo_what_;
-  int wake_[2] = {-1, -1};  // a pipe: a signal's number, or 0 when the run ended
   std::thread thread_;
 };
 

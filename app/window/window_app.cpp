@@ -28,6 +28,7 @@
 #include "core/gl_debug.h"
 #include "core/glslang_client.h"
 #include "core/views.h"
+#include "core/stop_signals.h"
 #include "core/wake_on_readable.h"
 #include "core/watch.h"
 #include "core/renderer.h"
@@ -84,6 +85,7 @@ class WindowApp {
         shown_source_(options.source),
         project_(project_files(options.scene, options.media), options.source, options.channels),
         watcher_(make_watcher(options.watch)), wake_on_save_(watcher_->event_fd(), [] { glfwPostEmptyEvent(); }),
+        wake_on_signal_(stop_signals_.fd(), [] { glfwPostEmptyEvent(); }),
         graph_(renderer_), builder_(window), ui_(window),
         budget_(options.target_fps > 0 ? 1000.0 / options.target_fps : 0.0) {
     glfwGetCursorPos(window_, &cursor_.first, &cursor_.second);
@@ -116,6 +118,9 @@ class WindowApp {
       else glfwWaitEventsTimeout(idle_wait_s());
       if (watcher_->changed()) load();
       wake_on_save_.rearm();
+      // Ctrl-C in the terminal, or a kill: quit as Q does, so that a take
+      // being recorded is written and no half file is left.
+      if (stop_signals_.received()) quit_ = true;
       if (const std::optional<ReloadStatus> built = builder_.finished()) {
         if (std::exchange(twin_build_, false)) {
           if (*built == ReloadStatus::Swapped) project_.commit_twins();
@@ -153,6 +158,10 @@ class WindowApp {
     for (const TiledShot& shot : shots_)
       std::cerr << "raymarching: screenshot not taken: the window closed before " << shot.path().string() << " was drawn\n";
     if (options_.verbose) std::cerr << "raymarching: drew " << frames_drawn_ << " frames\n";
+    if (const int signal = stop_signals_.received()) {
+      std::cerr << "raymarching: the window was closed by " << signal_name(signal) << '\n';
+      return 128 + signal;  // as a shell reports a program a signal ended
+    }
     return kExitOk;
   }
 
@@ -1033,6 +1042,8 @@ class WindowApp {
   Project project_;
   std::unique_ptr<Watcher> watcher_;
   WakeOnReadable wake_on_save_;  // after the watcher, whose descriptor it polls: its thread ends first
+  StopSignals stop_signals_;
+  WakeOnReadable wake_on_signal_;  // after stop_signals_, whose descriptor it polls
   Renderer renderer_;
   FrameGraph graph_;
   // After the project and the graph, whose textures its warm-up reads: it

@@ -9,7 +9,8 @@ an F12 shot while both are down; F9 again writes the take. Checks: the take
 has the drag and the key; two replays of it give identical frames, and
 identical videos; the frame the shot names (raymarching:take_frame) matches
 the shot; a replay at another rate and size has the frames that rate asks
-for; a take whose source changed since renders with one warning naming it.
+for; a take whose source changed since renders with one warning naming it;
+SIGTERM while a take records closes the window with the take written.
 """
 import filecmp
 import glob
@@ -156,7 +157,35 @@ def main():
     warnings = [l for l in r.stderr.splitlines() if "warning" in l]
     check("a take of a changed scene renders with one warning naming the file",
           r.returncode == 0 and len(warnings) == 1 and "take.frag" in warnings[0], r.stderr)
+    killed_while_recording(work, scene)
     return summary()
+
+
+def killed_while_recording(work, scene):
+    """SIGTERM (a kill; Ctrl-C's SIGINT alike) closes the window as Q does:
+    the take being recorded is written, and the exit status says which
+    signal (128 + 15)."""
+    out, err = os.path.join(work, "kill-stdout.txt"), os.path.join(work, "kill-stderr.txt")
+    proc = open_window([BINARY, scene, "--size", "160x90", "--no-ui", "-v"], out, err, work)
+    window = first_frame_window(proc, "take.frag", err)
+    check("a second window opens", window is not None)
+    if not window:
+        return
+    xdotool("key", "--window", window, "F9")
+    recording = wait_for(lambda: "take: recording" in open(out).read(), timeout=10)
+    time.sleep(0.5)
+    proc.terminate()
+    try:
+        status = proc.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    written = re.findall(r"^take: (.*) \((\d+) frames\)$", open(out).read(), re.M)
+    check("SIGTERM while a take records writes the take", recording and written and
+          os.path.exists(os.path.join(work, written[0][0])) and int(written[0][1]) > 0, open(out).read())
+    check("... and ends with status 143 and one line that names the signal",
+          status == 143 and "raymarching: the window was closed by SIGTERM\n" in open(err).read(),
+          f"status {status}: {open(err).read()[-300:]}")
 
 
 if __name__ == "__main__":
