@@ -81,9 +81,10 @@ struct Outcome {
 
 // Runs the raymarching binary with `args` (shell syntax); stdout is dropped.
 // The shell execs the binary, so the time and memory measured are its own.
-inline Outcome run_binary(const std::string& args) {
+// `shell_before` runs in that shell first (a ulimit).
+inline Outcome run_binary(const std::string& args, const std::string& shell_before = "") {
   TempDir dir;
-  const std::string cmd = "exec " + std::string(RM_BINARY) + " " + args + " 2> '" + (dir / "err.txt").string() + "' >/dev/null";
+  const std::string cmd = shell_before + "exec " + std::string(RM_BINARY) + " " + args + " 2> '" + (dir / "err.txt").string() + "' >/dev/null";
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid == 0) {

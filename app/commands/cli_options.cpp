@@ -13,6 +13,7 @@
 #include <regex>
 #include <sstream>
 
+#include "core/capture.h"
 #include "core/data_paths.h"
 #include "core/files.h"
 #include "core/knobs.h"
@@ -43,8 +44,8 @@ glm::ivec2 parse_size(const std::string& text, const char* option) {
     throw UsageError{std::string(option) + " '" + text + "': number out of range"};
   }
   if (w <= 0 || h <= 0) throw UsageError{std::string(option) + " '" + text + "': width and height must be positive"};
-  constexpr long kMax = 16384;
-  if (w > kMax || h > kMax) throw UsageError{std::string(option) + " '" + text + "': at most " + std::to_string(kMax) + " pixels a side"};
+  if (w > kMaxPictureSide || h > kMaxPictureSide)
+    throw UsageError{std::string(option) + " '" + text + "': at most " + std::to_string(kMaxPictureSide) + " pixels a side"};
   return {static_cast<int>(w), static_cast<int>(h)};
 }
 

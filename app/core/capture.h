@@ -16,6 +16,11 @@ namespace rm {
 
 namespace fs = std::filesystem;
 
+// The largest picture the host draws and writes, a side: `render --size`,
+// the window's --size and a screenshot at --shot-scale. A float picture of
+// 16384x16384 already holds 4 GiB.
+constexpr int kMaxPictureSide = 16384;
+
 // Attributes stored in the file, e.g. {"raymarching:iTime", "1.5"}.
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <new>
 #include <string>
 
 #include "core/supersampling.h"
@@ -11,7 +12,16 @@ namespace rm {
 
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
   color_ = gl::make_texture(GL_TEXTURE_2D);
+  // Out of memory is this call's to say, not the debug output's: it is off
+  // for the call, and the error flag read after it (earlier errors were said).
+  const bool debug_output = glIsEnabled(GL_DEBUG_OUTPUT);
+  if (debug_output) glDisable(GL_DEBUG_OUTPUT);
+  while (glGetError() != GL_NO_ERROR) {
+  }
   glTextureStorage2D(color_.get(), 1, kFormat, width, height);
+  const GLenum error = glGetError();
+  if (debug_output) glEnable(GL_DEBUG_OUTPUT);
+  if (error == GL_OUT_OF_MEMORY) throw std::bad_alloc();
   fbo_ = gl::make_framebuffer();
   glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, color_.get(), 0);
 }

@@ -20,6 +20,9 @@ namespace rm {
 class RenderTarget {
  public:
   static constexpr GLenum kFormat = GL_RGBA32F;
+  // Throws std::bad_alloc when the driver has no memory for it (16 bytes a
+  // pixel): whoever asked for the picture says so in one line, and nothing
+  // draws into a target that is not there.
   RenderTarget(int width, int height);
   void bind() const;
   GLuint framebuffer() const { return fbo_.get(); }

@@ -62,7 +62,9 @@ std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& 
   return pattern.parent_path() / buf;
 }
 
-int render_command(const RenderRequest& req) {
+namespace {
+
+int render_frames(const RenderRequest& req) {
   // Everything that can be known wrong is reported before any GL work.
   const bool sequence = req.frames > 0;
   const bool video = is_video_path(req.out);
@@ -272,6 +274,21 @@ int render_command(const RenderRequest& req) {
   }
   if (video && !guard.write(req.out, [&] { return encoder->finish(&error); })) return fail(error, kExitUsage);
   return kExitOk;
+}
+
+}  // namespace
+
+// Running out of memory is one line, not an abort: a --size of 16384x16384
+// holds 4 GiB of floats before it is written.
+int render_command(const RenderRequest& req) {
+  try {
+    return render_frames(req);
+  } catch (const std::bad_alloc&) {
+    const double mib = 16.0 * req.size.x * req.size.y / (1 << 20);
+    return fail("not enough memory to render " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) +
+                    " pixels (" + std::to_string(static_cast<long long>(mib)) + " MiB a picture as floats)",
+                kExitUsage);
+  }
 }
 
 }  // namespace rm

@@ -865,7 +865,16 @@ class WindowApp {
     glfwSetWindowTitle(window_, title.c_str());
   }
 
+  // F12. A picture too large for the memory there is is one line, and the
+  // window goes on.
   void screenshot() {
+    try {
+      start_screenshot();
+    } catch (const std::bad_alloc&) {
+      std::cerr << "raymarching: error: no screenshot: not enough memory for its picture\n";
+    }
+  }
+  void start_screenshot() {
     if (!project_.ready()) {
       std::cerr << "raymarching: error: no picture to take: the scene has not compiled yet\n";
       return;
@@ -876,6 +885,12 @@ class WindowApp {
     }
     const int scale = std::max(1, options_.shot_scale);
     const glm::ivec2 size = glm::ivec2(glm::vec2(inputs_.resolution)) * scale;
+    const std::string pixels = std::to_string(size.x) + "x" + std::to_string(size.y);
+    if (std::max(size.x, size.y) > kMaxPictureSide) {
+      std::cerr << "raymarching: error: no screenshot: " << pixels << " pixels (the window's at --shot-scale " << scale
+                << ") is over " << kMaxPictureSide << " a side; a smaller --shot-scale or window takes one\n";
+      return;
+    }
     if (std::max(size.x, size.y) > renderer_.max_tile() && !project_.image_source().movable_frag_coord) {
       std::cerr << "raymarching: error: --shot-scale " << scale << " exceeds " << renderer_.max_tile()
                 << " pixels, and a shader that redeclares gl_FragCoord cannot be drawn in tiles\n";
@@ -912,7 +927,16 @@ class WindowApp {
   // once it is whole, it is written.
   void continue_shot() {
     TiledShot& shot = shots_.front();
-    if (!shot.draw(graph_, project_, budget_.budget_ms())) return;
+    try {
+      if (!shot.draw(graph_, project_, budget_.budget_ms())) return;
+    } catch (const std::bad_alloc&) {
+      const glm::ivec2 size(shot.inputs().resolution);
+      std::cerr << "raymarching: error: no screenshot: not enough memory for " << size.x << "x" << size.y
+                << " pixels (" << shot.path().string() << ")\n";
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      shots_.pop_front();
+      return;
+    }
     if (options_.verbose) std::cerr << "raymarching: screenshot drawn in " << shot.tiles() << " tiles\n";
     save_shot(shot.read(), shot.path(), shot.metadata());
     shots_.pop_front();
@@ -929,8 +953,12 @@ class WindowApp {
   static constexpr char kTakeFrame[] = "raymarching:take_frame";
 
   void save_shot(const Image& image, const fs::path& path, const Metadata& metadata) {
-    std::string error;
-    auto written = write_image(path, image, metadata, Overwrite::Never, &error);
+    std::string error = "not enough memory to write it";
+    std::optional<fs::path> written;
+    try {
+      written = write_image(path, image, metadata, Overwrite::Never, &error);
+    } catch (const std::bad_alloc&) {
+    }
     if (written) std::cout << "screenshot: " << written->string() << std::endl;
     else std::cerr << "raymarching: error: screenshot: " << error << '\n';
   }

@@ -249,6 +249,22 @@ TEST_F(Pathological, FilesThatAreNotRegularFiles) {
 }
 
 // What no real shader or image reaches is refused by its size, before it is read.
+// A picture larger than the memory there is (4 GiB of floats for the
+// largest --size, under a 3 GB limit of address space): one line, exit 2,
+// nothing written. It used to abort on std::bad_alloc. ASan reserves more
+// address space than the limit allows, so a sanitized build does not run it.
+#ifndef RM_SANITIZED
+TEST_F(Pathological, APictureLargerThanTheMemoryIsOneLine) {
+  write_file(dir_ / "white.frag", kMain);
+  const test::Outcome r = test::run_binary(
+      "render " + path("white.frag") + " -o " + path("big.png") + " --size 16384x16384", "ulimit -v 3000000; ");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err, "raymarching: error: not enough memory to render 16384x16384 pixels (4096 MiB a picture as "
+                   "floats)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "big.png"));
+}
+#endif
+
 TEST_F(Pathological, SizeLimits) {
   const std::string over(16u * 1024 * 1024 + 1, ' ');
   write_file(dir_ / "huge.frag", kMain + over);
