@@ -7,7 +7,8 @@ pixels match `render` of the same scene, time and mouse; an edit saved by
 rename shows up; a broken edit, and one that includes a FIFO, keeps the last
 good frame and reports file:line; the fix reloads; a number edit shows at
 once in the scene's twin, and then in its exact program, both as `render`
-draws the edited scene; Q quits with status 0. A number edit of a still is
+draws the edited scene; Q quits with status 0. F12 of a shot over 16384
+pixels a side (--shot-scale 16) is one line, and the window goes on. A number edit of a still is
 refined in its twin, and its exact program does not draw it again; nor do a
 pause, clock steps or a broken save, which shows the kept still under the
 stale badge. Right steps a paused animated scene, drawn again. A second window shows the
@@ -711,9 +712,35 @@ def step_paused_clock():
     check("Q quits the animated scene with status 0", status == 0, status)
 
 
+def shot_over_the_largest_picture():
+    """F12 at a --shot-scale that makes the shot more than 16384 pixels a side
+    (1100 x 16 = 17600): one line says so, nothing is written, and the window
+    goes on. It used to throw std::bad_alloc where memory ran short first."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-shot-")
+    scene = os.path.join(work, "still.frag")
+    with open(scene, "w") as f:
+        f.write(STILL)
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, scene, "--size", "1100x40", "--shot-scale", "16", "--shot-dir", work, "-v"],
+                       out_path, err_path, work)
+    window = first_frame_window(proc, "still.frag", err_path)
+    check("a window with --shot-scale 16 opens", window is not None, open(err_path).read()[-300:])
+    if not window:
+        return
+    xdotool("key", "--window", window, "F12")
+    said = wait_for(lambda: re.search(r"^raymarching: error: no screenshot: (\d+)x(\d+) pixels .* over 16384 a side",
+                                      open(err_path).read(), re.M), timeout=10)
+    check("F12 of a shot over 16384 pixels a side says so in one line", said is not None and int(said.group(1)) > 16384,
+          open(err_path).read()[-300:])
+    status = quit_with(proc, window, "q")
+    check("... writes nothing, and the window goes on to quit with status 0",
+          status == 0 and not [n for n in os.listdir(work) if n.endswith(".png")], (status, os.listdir(work)))
+
+
 if __name__ == "__main__":
     try:
         main()
+        shot_over_the_largest_picture()
         tweak_at_rest()
         step_paused_clock()
         scene_default_channel()
