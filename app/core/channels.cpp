@@ -50,7 +50,9 @@ bool check_channel_image(const std::filesystem::path& path, std::string* error) 
   return open_checked(path, error) != nullptr;
 }
 
-std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
+namespace {
+
+std::optional<Image> decode_channel_image(const std::filesystem::path& path, std::string* error) {
   auto in = open_checked(path, error);
   if (!in) return std::nullopt;
   const OIIO::ImageSpec& spec = in->spec();
@@ -78,6 +80,19 @@ std::optional<Image> load_channel_image(const std::filesystem::path& path, std::
     }
   }
   return image;
+}
+
+}  // namespace
+
+// An image within the size limit may still be more than the memory there is
+// (16384x16384 is 4 GiB as floats): one line, not an abort.
+std::optional<Image> load_channel_image(const std::filesystem::path& path, std::string* error) {
+  try {
+    return decode_channel_image(path, error);
+  } catch (const std::bad_alloc&) {
+    *error = "not enough memory to read its pixels";
+    return std::nullopt;
+  }
 }
 
 namespace {

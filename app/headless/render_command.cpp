@@ -284,7 +284,10 @@ int render_command(const RenderRequest& req) {
   try {
     return render_frames(req);
   } catch (const std::bad_alloc&) {
+    // The picture is named where it alone is a lot (a channel image that is
+    // too much says so where it is read).
     const double mib = 16.0 * req.size.x * req.size.y / (1 << 20);
+    if (mib < 256) return fail("not enough memory for this render", kExitUsage);
     return fail("not enough memory to render " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) +
                     " pixels (" + std::to_string(static_cast<long long>(mib)) + " MiB a picture as floats)",
                 kExitUsage);

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -250,8 +251,8 @@ TEST_F(Pathological, FilesThatAreNotRegularFiles) {
 
 // What no real shader or image reaches is refused by its size, before it is read.
 // A picture larger than the memory there is (4 GiB of floats for the
-// largest --size, under a 3 GB limit of address space): one line, exit 2,
-// nothing written. It used to abort on std::bad_alloc. ASan reserves more
+// largest --size, under a 3 GB limit of address space), or a channel image:
+// one line, exit 2, nothing written. Both used to abort on std::bad_alloc. ASan reserves more
 // address space than the limit allows, so a sanitized build does not run it.
 #ifndef RM_SANITIZED
 TEST_F(Pathological, APictureLargerThanTheMemoryIsOneLine) {
@@ -262,6 +263,22 @@ TEST_F(Pathological, APictureLargerThanTheMemoryIsOneLine) {
   EXPECT_EQ(r.err, "raymarching: error: not enough memory to render 16384x16384 pixels (4096 MiB a picture as "
                    "floats)\n");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "big.png"));
+
+  // A channel image within the size limit, but more than that memory as
+  // floats (16384x8192: 3.5 GiB): a black PPM, its pixels a hole in the file.
+  {
+    std::ofstream ppm(dir_ / "huge.ppm", std::ios::binary);
+    ppm << "P6\n16384 8192\n255\n";
+  }
+  std::filesystem::resize_file(dir_ / "huge.ppm", std::filesystem::file_size(dir_ / "huge.ppm") + 16384ull * 8192 * 3);
+  const test::Outcome channel = test::run_binary("render " + path("white.frag") + " -o " + path("small.png") +
+                                                     " --size 16x9 --channel0 " + path("huge.ppm"),
+                                                 "ulimit -v 3000000; ");
+  EXPECT_EQ(channel.status, 2) << channel.err;
+  EXPECT_NE(channel.err.find("'" + path("huge.ppm") + "': not enough memory to read its pixels\n"), std::string::npos)
+      << channel.err;
+  EXPECT_EQ(std::count(channel.err.begin(), channel.err.end(), '\n'), 1) << channel.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "small.png"));
 }
 #endif
 
