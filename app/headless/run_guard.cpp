@@ -1,6 +1,7 @@
 #include "headless/run_guard.h"
 
 #include <poll.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -78,7 +79,8 @@ void RunGuard::end(int signal) {
             : written_.empty() ? std::string("nothing was written")
                                : "the " + std::to_string(written_.size()) + " frames it wrote are kept");
   }
-  std::fprintf(stderr, "raymarching: error: %s\n", said.c_str());
+  // On a terminal the line goes below the progress bar (and a ^C), not after it.
+  std::fprintf(stderr, "%sraymarching: error: %s\n", isatty(STDERR_FILENO) ? "\n" : "", said.c_str());
   std::fflush(stderr);
   std::_Exit(signal == 0 ? kExitTimeout : 128 + signal);  // the GL thread may be inside a draw: no destructors
 }
