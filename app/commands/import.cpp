@@ -1,9 +1,9 @@
 #include "commands/import.h"
 
-#include <fstream>
 #include <iostream>
 
 #include "commands/cli_options.h"
+#include "core/capture.h"
 #include "core/diagnostics.h"
 #include "core/shadertoy_json.h"
 
@@ -33,11 +33,8 @@ int ImportCommand::run() const {
   for (const auto& [name, text] : files)
     if (!force_ && std::filesystem::exists(dir / name, ec))
       throw UsageError{"'" + (dir / name).string() + "' exists (--force replaces it)"};
-  for (const auto& [name, text] : files) {
-    std::ofstream out(dir / name, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw UsageError{"'" + (dir / name).string() + "': cannot write"};
-  }
+  for (const auto& [name, text] : files)  // each whole or not at all
+    if (!write_whole_file(dir / name, text, Overwrite::Replace, &error)) throw UsageError{error};
   std::cout << (dir / ShadertoyProject::kImage).string() << '\n';
   return kExitOk;
 }

@@ -4,9 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <tuple>
 
 #include "core/capture.h"
@@ -200,8 +200,10 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
-void write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows) {
-  std::ofstream csv(req.out / "accuracy.csv");
+// The table and the chart, each whole or not at all; false with *error set
+// when one could not be written.
+bool write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows, std::string* error) {
+  std::ostringstream csv;
   csv << "knob,value,ms,wall_ms,evaluations_mean,evaluations_max,rmse,psnr_db,hit_miss_share,depth_error,nan_pixels,no_effect,"
          "bound_evaluations_mean\n";
   for (const Measured& m : rows)
@@ -228,10 +230,12 @@ void write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows
     series.push_back(std::move(s));
   }
   if (base) series.push_back({"default", {{base->wall_ms, base->psnr}}});
-  std::ofstream svg(req.out / "accuracy.svg");
-  svg << svg_chart(req.scene.filename().string() + ": image error against GPU time (" + std::to_string(req.size.x) +
-                       "x" + std::to_string(req.size.y) + ")",
-                   "frame time, draw + glFinish (ms)", "PSNR against the reference (dB)", series);
+  const std::string svg =
+      svg_chart(req.scene.filename().string() + ": image error against GPU time (" + std::to_string(req.size.x) + "x" +
+                    std::to_string(req.size.y) + ")",
+                "frame time, draw + glFinish (ms)", "PSNR against the reference (dB)", series);
+  return write_whole_file(req.out / "accuracy.csv", csv.str(), Overwrite::Replace, error) &&
+         write_whole_file(req.out / "accuracy.svg", svg, Overwrite::Replace, error);
 }
 
 }  // namespace
@@ -283,7 +287,10 @@ int accuracy_command(const AccuracyRequest& input) {
     std::cerr << error;
     return kExitShaderError;
   }
-  write_image(req.out / "reference.png", reference->color, {}, Overwrite::Replace, &error);
+  if (!write_image(req.out / "reference.png", reference->color, {}, Overwrite::Replace, &error)) {
+    std::cerr << "raymarching: error: " << error << '\n';
+    return kExitUsage;
+  }
 
   const std::vector<Setting> settings = sweep();
   const std::string default_text = bench.expanded(settings.front());
@@ -326,7 +333,11 @@ int accuracy_command(const AccuracyRequest& input) {
       in.resolution = glm::vec3(req.size, 1.0f);
       in.time = static_cast<float>(req.time);
       in.uniforms = uniform_values(project.user_uniforms(), {}, &ignored).value_or(std::vector<UniformValue>{});
-      write_image(req.out / "steps.png", graph.render_frame(project, in, req.size), {}, Overwrite::Replace, &error);
+      if (!write_image(req.out / "steps.png", graph.render_frame(project, in, req.size), {}, Overwrite::Replace,
+                       &error)) {
+        std::cerr << "raymarching: error: " << error << '\n';
+        return kExitUsage;
+      }
     }
   }
 
@@ -345,7 +356,10 @@ int accuracy_command(const AccuracyRequest& input) {
                 m.no_effect ? " (no effect)" : "", m.ms, m.wall_ms, m.evals_mean, m.evals_max, bound_column.c_str(), m.psnr,
                 100.0 * m.hit_miss, m.depth_error, m.nan);
   }
-  write_outputs(req, rows);
+  if (!write_outputs(req, rows, &error)) {
+    std::cerr << "raymarching: error: " << error << '\n';
+    return kExitUsage;
+  }
   std::cerr << "accuracy: wrote " << (req.out / "accuracy.csv").string() << ", accuracy.svg, reference.png, steps.png\n";
   return kExitOk;
 }
