@@ -152,14 +152,11 @@ std::optional<HostLineCause> host_line_cause(const Source& source, int final_lin
   int number = 0;
   for (std::string line; number + 1 < final_line && std::getline(code, line);) {
     ++number;
-    const auto d = lexing::directive(line);
-    if (!d || d->name != "define") continue;
-    size_t end = 0;
-    while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
-    const std::string name(d->rest.substr(0, end));
-    if (end == 0 || !lexing::has_word(host_line, name) || source.locate(number).first.empty()) continue;
-    cause = HostLineCause{number, static_cast<int>(d->rest_at) + 1,
-                          "the scene's #define " + name + " changes the code the host adds around the scene: " + message};
+    const std::optional<std::string_view> name = lexing::defined_macro(line);
+    if (!name || !lexing::has_word(host_line, *name) || source.locate(number).first.empty()) continue;
+    cause = HostLineCause{number, static_cast<int>(name->data() - line.data()) + 1,
+                          "the scene's #define " + std::string(*name) +
+                              " changes the code the host adds around the scene: " + message};
   }
   return cause;
 }

@@ -27,6 +27,15 @@ std::optional<Directive> directive(std::string_view line) {
   return d;
 }
 
+std::optional<std::string_view> defined_macro(std::string_view line) {
+  const auto d = directive(line);
+  if (!d || d->name != "define") return std::nullopt;
+  size_t end = 0;
+  while (end < d->rest.size() && is_word_char(d->rest[end])) ++end;
+  if (end == 0) return std::nullopt;
+  return d->rest.substr(0, end);
+}
+
 bool nothing_but_comment(std::string_view rest) {
   const size_t at = skip_blanks(rest, 0);
   return at == rest.size() || rest.substr(at, 2) == "//";

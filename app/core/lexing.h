@@ -28,6 +28,9 @@ struct Directive {
   size_t rest_at = 0;     // offset of rest in the line
 };
 std::optional<Directive> directive(std::string_view line);
+// The name a `#define NAME ...` line defines, at rest_at of its directive;
+// nullopt for any other line.
+std::optional<std::string_view> defined_macro(std::string_view line);
 
 // Whether `rest` holds nothing more than blanks and perhaps a // comment.
 bool nothing_but_comment(std::string_view rest);

@@ -292,13 +292,10 @@ class Preprocessor {
   // or forbid (a -U). A -U reaches the scene's own files only: shaderlib's
   // defaults (#ifndef RM_MAX_STEPS ...) then hold, as without the scene's #define.
   bool defines_overridden_macro(std::string_view line, int file) const {
-    auto d = lexing::directive(line);
-    if (!d || d->name != "define") return false;
-    size_t end = 0;
-    while (end < d->rest.size() && lexing::is_word_char(d->rest[end])) ++end;
-    const std::string_view name = d->rest.substr(0, end);
-    if (defined_on_command_line(name)) return true;
-    return std::find(options_.undefines.begin(), options_.undefines.end(), name) != options_.undefines.end() &&
+    const std::optional<std::string_view> name = lexing::defined_macro(line);
+    if (!name) return false;
+    if (defined_on_command_line(*name)) return true;
+    return std::find(options_.undefines.begin(), options_.undefines.end(), *name) != options_.undefines.end() &&
            !is_under(out_.files[static_cast<size_t>(file)], shaderlib_dir_);
   }
 
