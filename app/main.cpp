@@ -27,15 +27,16 @@ namespace {
 // mistyped option would be reported as the missing one it was meant to be.
 // (And CLI11 2.1 lists the unexpected arguments last first.)
 std::string usage_error(const CLI::App& app, const CLI::ParseError& e) {
-  // An option of one value given twice: CLI11 says "--size: At Most 1 required but received 2".
-  static const std::regex given_twice(R"(^(\S+): At Most 1 required but received (\d+)$)");
-  std::cmatch m;
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr && std::regex_match(e.what(), m, given_twice))
-    return m[1].str() + " was given " + m[2].str() + " times; it takes one value";
-  // ... and one given last with no value: "--size: 1 required WxH missing".
-  static const std::regex no_value(R"(^(\S+): 1 required (.+) missing$)");
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr && std::regex_match(e.what(), m, no_value))
-    return m[1].str() + " needs a value: " + m[2].str();
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr) {
+    // An option of one value given twice: CLI11 says "--size: At Most 1 required but received 2";
+    // and one given last with no value: "--size: 1 required WxH missing".
+    static const std::regex given_twice(R"(^(\S+): At Most 1 required but received (\d+)$)");
+    static const std::regex no_value(R"(^(\S+): 1 required (.+) missing$)");
+    std::cmatch m;
+    if (std::regex_match(e.what(), m, given_twice))
+      return m[1].str() + " was given " + m[2].str() + " times; it takes one value";
+    if (std::regex_match(e.what(), m, no_value)) return m[1].str() + " needs a value: " + m[2].str();
+  }
   if (dynamic_cast<const CLI::RequiredError*>(&e) == nullptr && dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr)
     return e.what();
   const std::vector<std::string> unexpected = app.remaining(true);  // with the subcommand's, in order
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
   const rm::cli::ImportCommand import(app);
   // Each help shows what its command takes: the window's keys only in the
   // window's (set after the subcommands, which would inherit them).
-  const std::string exit_status = "\nexit status: 0 ok, 1 shader error, 2 usage or I/O error, 124 render --timeout passed,\n"
+  const std::string exit_status =
+      "\nexit status: 0 ok, 1 shader error, 2 usage or I/O error, 124 render --timeout passed,\n"
       "128+N stopped by signal N";
   app.footer(std::string("\n") + rm::window_keys_help() + exit_status);
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) command->footer(exit_status);

@@ -63,26 +63,23 @@ void RunGuard::end(int signal) {
   // With the lock no write is under way, and none starts.
   std::lock_guard lock(mutex_);
   for (const auto& undo : undo_) undo();
-  std::string said;
-  if (signal == 0) {
+  const bool timed_out = signal == 0;
+  if (timed_out)
     for (const auto& path : written_) {
       std::error_code ec;
       std::filesystem::remove(path, ec);
     }
-    said = "the render ran past " + option_ + " s and was stopped; " +
-           (!undo_.empty()     ? undo_what_ + " is removed"
-            : written_.empty() ? std::string("nothing was written")
-                               : std::string("the frames it wrote are removed"));
-  } else {
-    said = "the render was stopped by " + signal_name(signal) + "; " +
-           (!undo_.empty()     ? undo_what_ + " is removed"
-            : written_.empty() ? std::string("nothing was written")
-                               : "the " + std::to_string(written_.size()) + " frames it wrote are kept");
-  }
+  const std::string frames = timed_out ? "the frames it wrote are removed"
+                                       : "the " + std::to_string(written_.size()) + " frames it wrote are kept";
+  const std::string why = timed_out ? "the render ran past " + option_ + " s and was stopped"
+                                    : "the render was stopped by " + signal_name(signal);
+  const std::string said =
+      why + "; " +
+      (!undo_.empty() ? undo_what_ + " is removed" : written_.empty() ? std::string("nothing was written") : frames);
   // On a terminal the line goes below the progress bar (and a ^C), not after it.
   std::fprintf(stderr, "%sraymarching: error: %s\n", isatty(STDERR_FILENO) ? "\n" : "", said.c_str());
   std::fflush(stderr);
-  std::_Exit(signal == 0 ? kExitTimeout : 128 + signal);  // the GL thread may be inside a draw: no destructors
+  std::_Exit(timed_out ? kExitTimeout : 128 + signal);  // the GL thread may be inside a draw: no destructors
 }
 
 }  // namespace rm
