@@ -7,6 +7,7 @@
 
 #include "core/channel_spec.h"
 #include "core/files.h"
+#include "core/json_depth.h"
 
 namespace rm {
 
@@ -117,6 +118,11 @@ bool is_shadertoy_json(const std::filesystem::path& path) { return path.extensio
 
 std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,
                                                     std::string* error) {
+  if (const auto deep = json_nested_too_deep(text)) {
+    *error = std::to_string(deep->line) + ":" + std::to_string(deep->column) +
+             ": arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+    return std::nullopt;
+  }
   json doc;
   try {
     doc = json::parse(text);

@@ -11,6 +11,7 @@
 
 #include "core/capture.h"
 #include "core/files.h"
+#include "core/json_depth.h"
 
 namespace rm {
 
@@ -185,6 +186,11 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     return std::nullopt;
   }
   const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  if (const auto deep = json_nested_too_deep(*text)) {
+    *error = where + "at line " + std::to_string(deep->line) + ", column " + std::to_string(deep->column) +
+             ": arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+    return std::nullopt;
+  }
   try {
     const json doc = json::parse(*text);
     if (!doc.is_object() || field<int>(doc, "raymarching_take", 0) != kFormat) {

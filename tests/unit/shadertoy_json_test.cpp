@@ -129,5 +129,13 @@ TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
   EXPECT_EQ(error, "1:1: not a Shadertoy shader: no \"renderpass\" list");
 }
 
+// A million '[' parsed, and the value copied, overflowed the stack (a crash).
+TEST(ShadertoyJson, NestingTooDeepIsAnErrorNotACrash) {
+  const size_t levels = 1000000;
+  std::string error;
+  EXPECT_FALSE(read(std::string(levels, '[') + std::string(levels, ']'), &error));
+  EXPECT_EQ(error, "1:65: arrays and objects nested deeper than 64 levels");
+}
+
 }  // namespace
 }  // namespace rm

@@ -136,6 +136,10 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
                      "\"r\": [2, 2]}, {\"w\": 0.5, \"t\": 0, \"f\": 1}]}")
                 .find("comes before"),
             std::string::npos);
+  const std::string deep = "{\"raymarching_take\": 1, \"scene\": \"s.frag\",\n \"channels\": " + std::string(1000000, '[');
+  EXPECT_EQ(error_of(deep + std::string(1000000, ']') + "}"),
+            "take '" + (dir_ / "bad.take.json").string() + "': at line 2, column 77: arrays and objects nested deeper "
+            "than 64 levels");
   std::string error;
   EXPECT_FALSE(read_take(dir_ / "missing.take.json", &error));
   EXPECT_NE(error.find("missing.take.json"), std::string::npos) << error;
