@@ -132,6 +132,14 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     *error = line_col(text, e.byte > 0 ? e.byte - 1 : 0) + ": " +
              (colon == std::string::npos ? what : what.substr(colon));
     return std::nullopt;
+  } catch (const json::out_of_range& e) {
+    // A number past a double's range: "number overflow parsing '1e999'", which names no place.
+    const std::string what = e.what();
+    const size_t open = what.find('\''), close = what.rfind('\'');
+    const std::string number = open < close ? what.substr(open + 1, close - open - 1) : "";
+    *error = line_col(text, number.empty() ? 0 : text.find(number)) + ": the number " + number +
+             " is too large for a double";
+    return std::nullopt;
   }
   // {"Shader": {...}}, the shader itself, or a list of shaders (the first).
   if (doc.is_array() && !doc.empty()) doc = doc[0];

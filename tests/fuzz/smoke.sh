@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # ctest's fuzz smoke run: builds the fuzz targets into BUILD_DIR, replays
 # every seed whole (among them the crashes found before, kept as regression
-# inputs), then fuzzes the preprocessor for 15 s from the seed corpus; any
-# crash fails the test.
+# inputs), then fuzzes the preprocessor for 15 s and Shadertoy's JSON reader
+# for 10 s from the seed corpora; any crash fails the test.
 # (scripts/fuzz runs the long version.)
 set -euo pipefail
 source_dir="$(cd "$(dirname "$0")" && pwd)"
@@ -12,7 +12,11 @@ quietly() { local log; log=$("$@" 2>&1) || { printf '%s\n' "$log" >&2; echo "smo
 CXX=clang++ quietly cmake -S "$source_dir" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
 quietly cmake --build "$build_dir"
 rm -rf "$build_dir/corpus" && cp -r "$source_dir/corpus" "$build_dir/corpus"
+rm -rf "$build_dir/corpus-json" && cp -r "$source_dir/corpus-json" "$build_dir/corpus-json"
+cp "$source_dir"/../data/shadertoy/*.json "$build_dir/corpus-json"
 cd "$build_dir"
 ./source_fuzz corpus/* 2>&1 | tail -1
 ./check_fuzz corpus/* 2>&1 | tail -1
 ./source_fuzz -max_total_time=15 -max_len=4096 -timeout=10 corpus 2>&1 | tail -3
+./json_fuzz corpus-json/* 2>&1 | tail -1
+./json_fuzz -max_total_time=10 -max_len=4096 -timeout=10 -dict="$source_dir/json.dict" corpus-json 2>&1 | tail -3
