@@ -133,6 +133,8 @@ int RenderCommand::run() const {
   }
   req.codec = codec_;
   if (!frame_range_.empty()) req.frame_range = parse_frame_range(frame_range_, "--frame-range");
+  // OUT with a counter and no --frames is a sequence of one frame, f_0000.png, not a file named f_%04d.png.
+  if (req.frames == 0 && !req.frame_range && !is_video_path(req.out) && sequence_path(req.out, 0)) req.frames = 1;
   if (crf_ >= 0) req.crf = crf_;
   if (!view_.empty()) req.view = *view_from_string(view_);
   if (!mouse_.empty()) req.mouse = parse_mouse(mouse_);

@@ -471,6 +471,16 @@ TEST_F(Cli, RenderTimeoutEndsALongRenderWith124AndLeavesNothing) {
   EXPECT_TRUE(std::filesystem::exists(seq / "one.png"));
 }
 
+// OUT with a counter and no --frames is a sequence of one frame, numbered as
+// --frames 1 numbers it; it used to be written as a file named f_%04d.png.
+TEST_F(Cli, RenderOfOneFrameFillsTheCounterOfItsOutput) {
+  write_file(dir_ / "red.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0, 0.0, 0.0, 1.0); }\n");
+  const test::Outcome r =
+      run("render " + (dir_ / "red.frag").string() + " -o " + (dir_ / "f_%04d.png").string() + " --size 8x8");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(names_in(dir_.path()), (std::vector<std::string>{"f_0000.png", "red.frag"}));
+}
+
 // Bad shader files: each is exit 1 (a shader problem) or 2 (I/O), with one
 // line on stderr naming the problem and the path, never a crash or a hang.
 TEST_F(Cli, BadShaderFilesGetOneClearLine) {
