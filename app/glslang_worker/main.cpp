@@ -18,6 +18,11 @@
 
 int main() {
   signal(SIGPIPE, SIG_IGN);  // a host that went away ends the loop below
+  // Slurm's scancel and its time limit signal every process of a job. The
+  // host stops on SIGTERM, SIGINT and SIGHUP and closes the socket, which ends
+  // this process and its child; had they died first, the host would report the
+  // signal as glslang crashing on the shader. (The child inherits this.)
+  for (int stop : {SIGTERM, SIGINT, SIGHUP}) signal(stop, SIG_IGN);
   glslang::InitializeProcess();
   while (const auto request = rm::read_request(0)) {
     const auto reply = rm::serve(*request, 0);

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 #include <vector>
 
@@ -141,47 +142,91 @@ TEST_F(Pathological, DeepNestsAndLongMacroChains) {
   });
 }
 
-// A host that dies while glslang works on a shader for seconds takes its
-// worker, and the worker's child, with it: the worker sees the socket close
-// and kills the child at once. (They used to live on until the child's 5 s
-// were up.) The shader sums 2^26 terms in an #if, which takes glslang's
+// A shader that sums 2^26 terms in an #if, which takes glslang's
 // preprocessor seconds but no memory, so only the time limit would end it.
-TEST_F(Pathological, AHostKilledDuringALongShaderLeavesNoWorkerBehind) {
+std::string slow_to_validate() {
   std::string sum = "#define A0 1+1\n";
   for (int i = 1; i <= 25; ++i)
     sum += "#define A" + std::to_string(i) + " A" + std::to_string(i - 1) + "+A" + std::to_string(i - 1) + "\n";
-  write_file(dir_ / "bomb.frag", sum + "#if A25 > 0\n#endif\n" + kMain);
-  const pid_t host = fork();
-  if (host == 0) {
-    freopen("/dev/null", "w", stderr);
-    execl(RM_BINARY, RM_BINARY, "check", path("bomb.frag").c_str(), static_cast<char*>(nullptr));
+  return sum + "#if A25 > 0\n#endif\n" + kMain;
+}
+
+// The host run as `raymarching ARGS...` (stderr to `err`), and once glslang
+// runs on its shader: its worker, and the worker's child (the sandbox).
+struct HostInGlslang {
+  pid_t host = 0, worker = 0, sandbox = 0;
+};
+
+HostInGlslang start_host_until_glslang_runs(const std::vector<std::string>& args, const std::filesystem::path& err) {
+  HostInGlslang p;
+  p.host = fork();
+  if (p.host == 0) {
+    freopen(err.c_str(), "w", stderr);
+    std::vector<char*> argv{const_cast<char*>(RM_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(RM_BINARY, argv.data());
     _exit(127);
   }
-  ASSERT_GT(host, 0);
-  // The worker, once its child (the sandbox that runs glslang) is running.
-  pid_t worker = 0, sandbox = 0;
   const auto start = std::chrono::steady_clock::now();
-  while (!sandbox && std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kMaxSeconds)) {
-    for (pid_t child : children_of(host)) {
+  while (p.host > 0 && !p.sandbox &&
+         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(kMaxSeconds)) {
+    for (pid_t child : children_of(p.host)) {
       if (const std::vector<pid_t> grandchildren = children_of(child); !grandchildren.empty()) {
-        worker = child;
-        sandbox = grandchildren[0];
+        p.worker = child;
+        p.sandbox = grandchildren[0];
       }
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  kill(host, SIGKILL);
+  return p;
+}
+
+// A host that dies while glslang works on a shader for seconds takes its
+// worker, and the worker's child, with it: the worker sees the socket close
+// and kills the child at once. (They used to live on until the child's 5 s
+// were up.)
+TEST_F(Pathological, AHostKilledDuringALongShaderLeavesNoWorkerBehind) {
+  write_file(dir_ / "bomb.frag", slow_to_validate());
+  const HostInGlslang p = start_host_until_glslang_runs({"check", path("bomb.frag")}, "/dev/null");
+  ASSERT_GT(p.host, 0);
+  kill(p.host, SIGKILL);
   int status = 0;
-  waitpid(host, &status, 0);
-  ASSERT_NE(sandbox, 0) << "the host never ran glslang in its worker's child";
+  waitpid(p.host, &status, 0);
+  ASSERT_NE(p.sandbox, 0) << "the host never ran glslang in its worker's child";
   const auto killed = std::chrono::steady_clock::now();
-  while (!(ended(worker) && ended(sandbox)) && std::chrono::steady_clock::now() - killed < std::chrono::seconds(3))
+  while (!(ended(p.worker) && ended(p.sandbox)) && std::chrono::steady_clock::now() - killed < std::chrono::seconds(3))
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
-  EXPECT_TRUE(ended(worker));
-  EXPECT_TRUE(ended(sandbox));
+  EXPECT_TRUE(ended(p.worker));
+  EXPECT_TRUE(ended(p.sandbox));
   EXPECT_LT(seconds, 2.0);  // not the child's 5 s
   std::printf("  the worker and its child ended %.0f ms after the host was killed\n", seconds * 1000);
+}
+
+// Slurm's scancel and its time limit send SIGTERM to every process of a job,
+// not at one instant. The glslang worker and its child ignore it, and end
+// when the host that stops closes their socket: a render stopped while its
+// shader is validated says it was stopped, not that glslang crashed on the
+// shader (it did, exit 1, when the child died first).
+TEST_F(Pathological, ASignalToTheWholeJobIsAStopNotAGlslangCrash) {
+  write_file(dir_ / "bomb.frag", slow_to_validate());
+  const std::filesystem::path err = dir_ / "err.txt";
+  const HostInGlslang p = start_host_until_glslang_runs(
+      {"render", path("bomb.frag"), "-o", path("out.png"), "--size", "8x8"}, err);
+  ASSERT_GT(p.host, 0);
+  ASSERT_NE(p.sandbox, 0) << "the host never ran glslang in its worker's child";
+  kill(p.sandbox, SIGTERM);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(p.host, SIGTERM);
+  kill(p.worker, SIGTERM);
+  int status = 0;
+  waitpid(p.host, &status, 0);
+  std::ifstream in(err);
+  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM) << said;
+  EXPECT_EQ(said, "raymarching: error: the render was stopped by SIGTERM; nothing was written\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
 }
 
 TEST_F(Pathological, ManyIncludesOfOneFile) {
