@@ -3,6 +3,7 @@
 #include <OpenImageIO/hash.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -55,6 +56,19 @@ template <typename T>
 T field(const json& object, const char* name, T fallback) {
   auto it = object.find(name);
   return it == object.end() || it->is_null() ? fallback : it->get<T>();
+}
+
+// A whole number of the take's, as an int. nlohmann casts a float to an int
+// unchecked (undefined past int's range), so anything but an int is refused.
+struct NotAnInt {
+  std::string text;
+};
+int int_of(const json& v) {
+  const bool in_range = v.is_number_unsigned() ? v.get<std::uint64_t>() <= INT_MAX
+                                               : v.is_number_integer() && v.get<std::int64_t>() >= INT_MIN &&
+                                                     v.get<std::int64_t>() <= INT_MAX;
+  if (!in_range) throw NotAnInt{v.dump()};
+  return v.get<int>();
 }
 
 glm::vec4 vec4_of(const json& v) { return {v.at(0).get<float>(), v.at(1).get<float>(), v.at(2).get<float>(), v.at(3).get<float>()}; }
@@ -210,7 +224,7 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     take.date = field<std::string>(doc, "date", "");
     for (const auto& e : field<json>(doc, "events", json::array())) {
       TakeEvent event;
-      event.frame = e.at("frame").get<int>();
+      event.frame = int_of(e.at("frame"));
       for (const auto& d : field<json>(e, "defines", json::array()))
         event.defines.push_back({d.at(0).get<std::string>(), d.at(1).get<std::string>()});
       event.hashes = field<std::map<std::string, std::string>>(e, "hashes", {});
@@ -220,17 +234,23 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     for (const auto& line : doc.at("frames")) {
       state.wall = line.at("w").get<double>();
       state.time = line.at("t").get<float>();
-      state.frame = line.at("f").get<int>();
-      if (line.contains("r")) state.size = {line.at("r").at(0).get<int>(), line.at("r").at(1).get<int>()};
+      state.frame = int_of(line.at("f"));
+      if (line.contains("r")) state.size = {int_of(line.at("r").at(0)), int_of(line.at("r").at(1))};
       if (state.size.x <= 0 || state.size.y <= 0) {
         *error = where + "frame " + std::to_string(take.frames.size()) + " has no window size (\"r\": [W, H] in pixels)";
+        return std::nullopt;
+      }
+      if (std::max(state.size.x, state.size.y) > kMaxPictureSide) {
+        *error = where + "frame " + std::to_string(take.frames.size()) + "'s window is " +
+                 std::to_string(state.size.x) + "x" + std::to_string(state.size.y) + ", over " +
+                 std::to_string(kMaxPictureSide) + " pixels a side";
         return std::nullopt;
       }
       if (line.contains("m")) state.mouse = vec4_of(line.at("m"));
       if (line.contains("c")) state.cursor = {line.at("c").at(0).get<float>(), line.at("c").at(1).get<float>()};
       state.keys.clear();
       for (const auto& k : field<json>(line, "k", json::array()))
-        state.keys.push_back({k.at(0).get<int>(), k.at(1).get<int>() != 0});
+        state.keys.push_back({int_of(k.at(0)), int_of(k.at(1)) != 0});
       const json set = field<json>(line, "u", json::object());
       for (const auto& [name, value] : set.items()) {
         const std::string text = value.get<std::string>();
@@ -253,6 +273,9 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
   } catch (const json::exception& e) {
     // nlohmann's own words say where: "parse error at line 3, column 7: ..." or a missing key.
     *error = where + e.what();
+    return std::nullopt;
+  } catch (const NotAnInt& e) {
+    *error = where + "expected a whole number, not " + e.text;
     return std::nullopt;
   }
 }

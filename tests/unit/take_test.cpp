@@ -136,6 +136,13 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
                      "\"r\": [2, 2]}, {\"w\": 0.5, \"t\": 0, \"f\": 1}]}")
                 .find("comes before"),
             std::string::npos);
+  const std::string frame = "{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": [{\"w\": 0, \"t\": 0, ";
+  EXPECT_NE(error_of(frame + "\"f\": 1e300, \"r\": [2, 2]}]}").find("expected a whole number, not 1e+300"),
+            std::string::npos);  // nlohmann's cast of it to an int is undefined
+  EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [2, 18446744073709551615]}]}").find("expected a whole number"),
+            std::string::npos);
+  EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [100000, 2]}]}").find("frame 0's window is 100000x2, over 16384"),
+            std::string::npos);
   const std::string deep = "{\"raymarching_take\": 1, \"scene\": \"s.frag\",\n \"channels\": " + std::string(1000000, '[');
   EXPECT_EQ(error_of(deep + std::string(1000000, ']') + "}"),
             "take '" + (dir_ / "bad.take.json").string() + "': at line 2, column 77: arrays and objects nested deeper "
