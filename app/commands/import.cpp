@@ -1,10 +1,12 @@
 #include "commands/import.h"
 
+#include <cctype>
 #include <iostream>
 
 #include "commands/cli_options.h"
 #include "core/capture.h"
 #include "core/diagnostics.h"
+#include "core/files.h"
 #include "core/shadertoy_json.h"
 
 namespace rm::cli {
@@ -25,13 +27,17 @@ int ImportCommand::run() const {
   if (!project) throw UsageError{error};
   for (const std::string& warning : project->warnings) std::cerr << "raymarching: warning: " << warning << '\n';
   const std::filesystem::path dir = dir_;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (!std::filesystem::is_directory(dir, ec)) throw UsageError{"'" + dir_ + "': cannot create the directory"};
+  std::error_code made, probed;
+  std::filesystem::create_directories(dir, made);
+  if (!std::filesystem::is_directory(dir, probed)) {
+    std::string why = exists_on_disk(dir) ? "a file of that name is there" : made ? made.message() : "";
+    if (!why.empty()) why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
+    throw UsageError{"'" + dir_ + "': cannot create the directory" + (why.empty() ? "" : ": " + why)};
+  }
   // Nothing is written unless everything can be: no half-imported project.
   const auto files = project->files_to_import();
   for (const auto& [name, text] : files)
-    if (!force_ && std::filesystem::exists(dir / name, ec))
+    if (!force_ && exists_on_disk(dir / name))
       throw UsageError{"'" + (dir / name).string() + "' exists (--force replaces it)"};
   for (const auto& [name, text] : files)  // each whole or not at all
     if (!write_whole_file(dir / name, text, Overwrite::Replace, &error)) throw UsageError{error};

@@ -481,6 +481,40 @@ TEST_F(Cli, RenderOfOneFrameFillsTheCounterOfItsOutput) {
   EXPECT_EQ(names_in(dir_.path()), (std::vector<std::string>{"f_0000.png", "red.frag"}));
 }
 
+// import writes a project's files, which then check clean; it replaces
+// nothing without --force, and writes nothing where it cannot write all.
+TEST_F(Cli, ImportWritesTheProjectAndReplacesNothingUnasked) {
+  const std::string json = std::string(RM_TEST_DATA_DIR) + "/shadertoy/pingpong.json";
+  const std::filesystem::path project = dir_ / "pingpong";
+  test::Outcome r = run("import " + json + " " + project.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(names_in(project), (std::vector<std::string>{"buffer_a.frag", "buffer_b.frag", "image.frag"}));
+  r = run("check " + (project / "image.frag").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+
+  write_file(project / "buffer_a.frag", "// edited\n");
+  r = run("import " + json + " " + project.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: '" + (project / "buffer_a.frag").string() + "' exists (--force replaces it)\n");
+  EXPECT_EQ(test::read_file(project / "buffer_a.frag"), "// edited\n");
+  r = run("import " + json + " " + project.string() + " --force");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(test::read_file(project / "buffer_a.frag"), "// edited\n");
+
+  write_file(dir_ / "afile", "");
+  r = run("import " + json + " " + (dir_ / "afile").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raymarching: error: '" + (dir_ / "afile").string() +
+                       "': cannot create the directory: a file of that name is there\n");
+  r = run("import " + json + " " + (dir_ / "afile" / "sub").string());
+  EXPECT_NE(r.err.find("cannot create the directory: not a directory"), std::string::npos) << r.err;
+  write_file(dir_ / "broken.json", "{\"renderpass\": [,]}");
+  r = run("import " + (dir_ / "broken.json").string() + " " + (dir_ / "never").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("broken.json:1:17: syntax error"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "never"));
+}
+
 // Bad shader files: each is exit 1 (a shader problem) or 2 (I/O), with one
 // line on stderr naming the problem and the path, never a crash or a hang.
 TEST_F(Cli, BadShaderFilesGetOneClearLine) {
