@@ -37,6 +37,8 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--frame-range", frame_range_, "Render only frames FIRST to LAST of the --frames sequence, numbered "
                                             "as in the whole run, so that runs on several machines make it up")
       ->type_name("FIRST:LAST");
+  c.add_flag("--skip-existing", skip_existing_, "Draw only the frames whose files are not there yet (each was written "
+                                                "whole): a stopped run, started again, goes on where it stopped");
   auto* motion = c.add_option("--motion-samples", motion_samples_, "Motion blur: average N times over the open "
                                                                  "shutter in every frame")
                      ->type_name("N")->check(CLI::Range(1, 256));
@@ -145,6 +147,7 @@ int RenderCommand::run() const {
     if (req.channels[c].empty()) req.channels[c] = req.take->channels[c];
   req.sets = sets_;
   req.timeout = timeout_;
+  req.skip_existing = skip_existing_;
   req.samples = samples_;
   req.motion_samples = motion_samples_;
   req.shutter = motion_samples_ > 1 ? (shutter_ >= 0 ? shutter_ : 0.5) : 0.0;

@@ -34,6 +34,7 @@ class RenderCommand {
   double shutter_ = -1;  // --shutter; -1: 0.5 with --motion-samples, else none
   int motion_samples_ = 1;
   double timeout_ = 0;
+  bool skip_existing_ = false;
   SourceFlags source_;
   ChannelFlags channels_;
   std::string media_;

@@ -8,6 +8,7 @@
 #include "core/capture.h"
 #include "core/channels.h"
 #include "core/check.h"
+#include "core/files.h"
 #include "core/lexing.h"
 #include "core/frame_graph.h"
 #include "core/glslang_client.h"
@@ -80,6 +81,10 @@ int render_frames(const RenderRequest& req) {
                   "slices with ffmpeg (docs/farm.md)",
                   kExitUsage);
   }
+  if (req.skip_existing && video)
+    return fail("--skip-existing goes on with frames already written, and a video is one file: give OUT a counter "
+                "(frame_%04d.png)",
+                kExitUsage);
   if (video) {
     if (!sequence)
       return fail("'" + req.out.string() + "': a video needs --frames COUNT or --duration SECONDS", kExitUsage);
@@ -149,9 +154,11 @@ int render_frames(const RenderRequest& req) {
     if (auto changes = take_source_changes(*req.take, pass_hashes(project)))
       std::cerr << "raymarching: warning: take: " << *changes << '\n';
 
-  if (req.frame_range && project.has_feedback())
-    return fail("--frame-range: this project feeds each frame into the next (a buffer reads itself or a later "
-                "pass), so its frames cannot be rendered apart; render it in one run",
+  // Frames drawn apart from the ones before them would lack what those fed into them.
+  const char* apart = req.frame_range ? "--frame-range" : req.skip_existing ? "--skip-existing" : nullptr;
+  if (apart && project.has_feedback())
+    return fail(std::string(apart) + ": this project feeds each frame into the next (a buffer reads itself or a "
+                "later pass), so its frames cannot be rendered apart; render it in one run",
                 kExitUsage);
   // The frames this run draws, numbered as in the whole sequence.
   const int first = req.frame_range ? req.frame_range->x : 0;
@@ -258,12 +265,17 @@ int render_frames(const RenderRequest& req) {
     if (replay && !take_knobs(i)) return fail(error, kExitShaderError);
     if (replay) frame_wall = replay->wall(i);
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
+    const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
+    if (req.skip_existing && exists_on_disk(out)) {  // whole: frames are renamed into place
+      graph.keyboard().end_frame();
+      if (sequence) progress.show(total - count + n + 1);
+      continue;
+    }
     Image image = graph.render_frame(project, in, req.size, req.samples, motion);
     graph.keyboard().end_frame();
     if (video) {
       if (!guard.guard([&] { return encoder->add(image, &error); })) return fail(error, kExitUsage);
     } else {
-      const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
       const bool written = guard.write(out, [&] {
         return write_image(out, image, frame_metadata(req.scene, req.source, in, req.samples, motion), Overwrite::Replace,
                            &error).has_value();

@@ -25,6 +25,7 @@ struct RenderRequest {
   std::optional<int> frame;   // default: the frame the time falls in at `fps`
   int frames = 0;             // 0: one picture; N: a sequence of N frames
   std::optional<glm::ivec2> frame_range;  // only frames x to y (included) of the sequence
+  bool skip_existing = false;  // a frame whose file is there already is not drawn again
   double fps = 60.0;
   glm::vec4 mouse{0.0f};
   std::array<std::filesystem::path, 4> channels;

@@ -374,6 +374,8 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --frame-range 0:0", "--frame-range is a slice of a sequence: give --frames COUNT"},
       {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 4 --frame-range 0:1", "--frame-range writes frames, not a video"},
       {"render " + g + " -o " + (dir_ / "v.mp4").string(), "a video needs --frames COUNT or --duration SECONDS"},
+      {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 4 --skip-existing", "--skip-existing goes on with frames already written, and a video is one file"},
+      {"render " + std::string(RM_TEST_DATA_DIR) + "/../../examples/progressive/image.frag -o " + (dir_ / "f_%d.png").string() + " --frames 4 --skip-existing --size 8x8", "--skip-existing: this project feeds each frame into the next"},
       {"render " + g + " -o " + (dir_ / "v.mp4").string() + " --frames 2 --size 161x90", "needs an even width and height"},
       {"render " + g + " -o " + out + " --crf 20", "--codec and --crf are for a video (.mp4, .mov, .webm, .gif)"},
       {"render " + g + " -o " + (dir_ / "v.gif").string() + " --frames 2 --crf 20", "--crf does not apply to .gif"},

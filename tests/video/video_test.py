@@ -7,8 +7,9 @@ Each video is decoded again: its frame count, size and rate by ffprobe, and
 one frame by ffmpeg, compared with the PNG `render` draws of that frame. A
 missing, failing or killed ffmpeg, a --timeout and a signal (SIGTERM,
 SIGINT) leave no file under the output's name and no hidden one beside it;
-a signal keeps the frames of a sequence written whole, and one ignored when
-the render began (nohup's SIGHUP) stays ignored.
+a signal keeps the frames of a sequence written whole, and `--skip-existing`
+goes on from them; a signal ignored when the render began (nohup's SIGHUP)
+stays ignored.
 """
 import os
 import pty
@@ -225,6 +226,31 @@ class Video(unittest.TestCase):
         for name in (frames[0], frames[-1]):
             info = subprocess.run(["oiiotool", "--info", str(self.dir / name)], capture_output=True, text=True)
             self.assertIn("160 x   90", info.stdout, name)
+
+    def test_a_stopped_sequence_started_again_with_skip_existing_goes_on_where_it_stopped(self):
+        # As a Slurm task cancelled and requeued: the frames kept are not
+        # drawn again, and the whole is the frames of one uninterrupted run.
+        args = [str(self.scene), "--frames", "40", "--size", "160x90", "--date", "2026-01-01T00:00:00"]
+        (self.dir / "stopped").mkdir()
+        run = subprocess.Popen([BINARY, "render", "-o", str(self.dir / "stopped" / "f%02d.png"), *args],
+                               stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while len(leftovers(self.dir / "stopped")) < 5 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        run.send_signal(signal.SIGTERM)
+        run.communicate(timeout=60)
+        kept = {name: os.stat(self.dir / "stopped" / name) for name in leftovers(self.dir / "stopped")}
+        self.assertTrue(5 <= len(kept) < 40, kept.keys())
+        render("-o", self.dir / "stopped" / "f%02d.png", *args, "--skip-existing")
+        self.assertEqual(leftovers(self.dir / "stopped"), [f"f{n:02d}.png" for n in range(40)])
+        for name, before in kept.items():
+            after = os.stat(self.dir / "stopped" / name)
+            self.assertEqual((after.st_ino, after.st_mtime_ns), (before.st_ino, before.st_mtime_ns), name)
+        (self.dir / "whole").mkdir()
+        render("-o", self.dir / "whole" / "f%02d.png", *args)
+        for n in range(40):
+            name = f"f{n:02d}.png"
+            self.assertEqual((self.dir / "stopped" / name).read_bytes(), (self.dir / "whole" / name).read_bytes(), name)
 
     def test_a_signal_ignored_when_the_render_began_stays_ignored(self):
         # nohup ignores SIGHUP for the program it starts: the render goes on.
