@@ -13,7 +13,9 @@
 // Checked: no crash or hang, and every line of the output maps back to a file
 // the preprocessor read (or to the host). The output's numbers are then lifted
 // for a twin (core/tweak), which must keep every line where it was and hold
-// as many marks as values, never more than the limit. Built as check_fuzz
+// as many marks as values, never more than the limit. The shader's own
+// uniforms are read from it (core/user_uniforms), and each default, written
+// as --set spells it, must read back. Built as check_fuzz
 // (RM_FUZZ_CHECK), the result also goes through glslang's validation and the
 // log mapping, and every diagnostic must print as one line.
 #include <cstdint>
@@ -23,6 +25,7 @@
 
 #include "core/source.h"
 #include "core/tweak.h"
+#include "core/user_uniforms.h"
 #ifdef RM_FUZZ_CHECK
 #include "core/check.h"
 #endif
@@ -107,6 +110,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       size_t twin_lines = 0;
       for (char c : twin.text) twin_lines += c == '\n';
       if (twin_lines != twin.line_map.size()) std::abort();
+    }
+    // The shader's own uniforms: each default written as --set spells it reads back.
+    const rm::UserUniforms uniforms = rm::find_user_uniforms(source, &source.text);
+    for (const rm::UserUniform& u : uniforms.uniforms) {
+      if (u.initial.size() != static_cast<size_t>(u.components)) std::abort();
+      std::string why;
+      const auto back = rm::parse_uniform_value(u, rm::uniform_value_text(u.type, u.initial), &why);
+      if (!back || back->size() != u.initial.size()) std::abort();
     }
 #ifdef RM_FUZZ_CHECK
     for (const rm::Diagnostic& d : rm::validate(source))
