@@ -1,6 +1,7 @@
 #include "core/user_uniforms.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -42,7 +43,8 @@ std::optional<float> number(std::string_view text) {
   const std::string s(text);
   char* end = nullptr;
   const float v = std::strtof(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size()) return std::nullopt;
+  // nan, inf and what overflows a float (1e39) are no value a control can hold.
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 
@@ -115,6 +117,11 @@ std::optional<std::vector<float>> parse_uniform_value(const UserUniform& u, cons
     auto v = number(std::string_view(text).substr(at, comma - at));
     if (!v) {
       *error = "'" + text + "' is not " + (u.components == 1 ? "a number" : std::to_string(u.components) + " numbers");
+      return std::nullopt;
+    }
+    // An int's value as an int: past its range the cast is undefined.
+    if (u.type == UserUniform::Type::Int && !(*v >= -2147483648.0f && *v < 2147483648.0f)) {
+      *error = "'" + std::string(std::string_view(text).substr(at, comma - at)) + "' is out of an int's range";
       return std::nullopt;
     }
     out.push_back(u.type == UserUniform::Type::Int ? static_cast<float>(static_cast<int>(*v)) : *v);

@@ -108,5 +108,28 @@ TEST(UserUniforms, SetGivesValuesAndRefusesWhatDoesNotFit) {
   EXPECT_EQ(uniform_value_text(UserUniform::Type::Float, {-0.0f}), "0") << "never -0";
 }
 
+// No control holds nan or inf, and an int's value past its range was an
+// undefined cast to int.
+TEST(UserUniforms, ValuesAreFiniteAndAnIntsFitsAnInt) {
+  const UserUniforms u = uniforms_of("uniform float speed;  // ui: max=inf default=1e39\n"
+                                     "uniform int count;  // ui: default=3e9\n");
+  ASSERT_EQ(u.uniforms.size(), 2u);
+  EXPECT_EQ(u.uniforms[0].max, 1.0f) << "max=inf is refused";
+  EXPECT_EQ(u.uniforms[0].initial, std::vector<float>{0.0f}) << "so is default=1e39";
+  EXPECT_EQ(u.uniforms[1].initial, std::vector<float>{0.0f}) << "and 3e9 for an int";
+  ASSERT_EQ(u.warnings.size(), 3u) << join(u.warnings);
+  EXPECT_NE(u.warnings[2].message.find("'3e9' is out of an int's range"), std::string::npos) << join(u.warnings);
+  std::string error;
+  for (const char* set : {"speed=nan", "speed=-inf", "speed=1e39"}) {
+    EXPECT_FALSE(uniform_values(u, {set}, &error)) << set;
+    EXPECT_NE(error.find("is not a number"), std::string::npos) << error;
+  }
+  EXPECT_FALSE(uniform_values(u, {"count=-1e10"}, &error));
+  EXPECT_EQ(error, "count: '-1e10' is out of an int's range");
+  auto values = uniform_values(u, {"count=-2147483648", "speed=-3.4e38"}, &error);
+  ASSERT_TRUE(values) << error;
+  EXPECT_EQ((*values)[1].value, std::vector<float>{-2147483648.0f});
+}
+
 }  // namespace
 }  // namespace rm
