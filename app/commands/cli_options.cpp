@@ -87,6 +87,23 @@ CLI::Validator finite_between(double low, double high) {
       "");
 }
 
+CLI::Validator whole_between(int low, int high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        const std::string said = "'" + text + "' is not a whole number from " + std::to_string(low) + " to " +
+                                 std::to_string(high);
+        size_t used = 0;
+        long long v = 0;
+        try {
+          v = std::stoll(text, &used);
+        } catch (const std::exception&) {
+          return said;
+        }
+        return used == text.size() && v >= low && v <= high ? "" : said;
+      },
+      "INT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
+}
+
 glm::vec4 parse_mouse(const std::string& text) {
   std::vector<double> parts;
   std::stringstream ss(text);

@@ -26,6 +26,8 @@ glm::ivec2 parse_frame_range(const std::string& text, const char* option);
 // An option's check: a finite number from `low` to `high`. CLI11's Range
 // lets NaN through, and prints DBL_MAX in full when a bound is open.
 CLI::Validator finite_between(double low, double high);
+// The same for an int option: "'1.5' is not a whole number from 1 to 1024".
+CLI::Validator whole_between(int low, int high);
 glm::vec4 parse_mouse(const std::string& text);
 std::chrono::system_clock::time_point parse_date(const std::string& text);
 

@@ -1,6 +1,7 @@
 #include "commands/render.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 
@@ -29,9 +30,9 @@ RenderCommand::RenderCommand(CLI::App& app)
   source_.add_to(c);
   c.add_option("--size", size_, "Picture size in pixels")->type_name("WxH");
   c.add_option("--time", time_, "iTime of the (first) frame in seconds")->type_name("T");
-  c.add_option("--frame", frame_, "iFrame of the (first) frame (default: time * fps)")->type_name("N")->check(CLI::NonNegativeNumber);
+  c.add_option("--frame", frame_, "iFrame of the (first) frame (default: time * fps)")->type_name("N")->check(whole_between(0, INT_MAX));
   auto* frames = c.add_option("--frames", frames_, "Render COUNT frames; OUT is a video, or needs a counter like "
-                                                   "frame_%04d.png")->type_name("COUNT")->check(CLI::Range(1, kMaxFrames));
+                                                   "frame_%04d.png")->type_name("COUNT")->check(whole_between(1, kMaxFrames));
   c.add_option("--duration", duration_, "Render SECONDS of frames at --fps (instead of --frames)")
       ->type_name("SECONDS")->check(finite_between(0.001, 1e6))->excludes(frames);
   c.add_option("--frame-range", frame_range_, "Render only frames FIRST to LAST of the --frames sequence, numbered "
@@ -41,14 +42,14 @@ RenderCommand::RenderCommand(CLI::App& app)
                                                 "whole): a stopped run, started again, goes on where it stopped");
   auto* motion = c.add_option("--motion-samples", motion_samples_, "Motion blur: average N times over the open "
                                                                  "shutter in every frame")
-                     ->type_name("N")->check(CLI::Range(1, 256));
+                     ->type_name("N")->check(whole_between(1, 256));
   c.add_option("--shutter", shutter_, "Motion blur: the share of the frame interval the shutter is open, centred on "
                                       "the frame's time (default 0.5, with --motion-samples)")
       ->type_name("FRACTION")->check(finite_between(0.0, 1.0))->needs(motion);
   c.add_option("--codec", codec_, "A video's ffmpeg encoder (default: libx264 for .mp4 and .mov, libvpx-vp9 for .webm)")
       ->type_name("NAME");
   c.add_option("--crf", crf_, "A video's quality, lower is better (default: 18 for H.264, 32 for VP9)")
-      ->type_name("N")->check(CLI::Range(0, 63));
+      ->type_name("N")->check(whole_between(0, 63));
   c.add_option("--fps", fps_, "Frames per second of a sequence")->type_name("F")->check(finite_between(0.001, 100000.0));
   c.add_option("--mouse", mouse_, "iMouse as X,Y[,CX,CY] in pixels")->type_name("X,Y[,CX,CY]");
   c.add_option("--set", sets_, "A value for one of the shader's own uniforms (repeatable; a screenshot records "
@@ -59,7 +60,7 @@ RenderCommand::RenderCommand(CLI::App& app)
       ->check(CLI::IsMember({"steps", "normals", "depth", "nan"}));
   c.add_option("--samples", samples_, "Supersamples per pixel, averaged: sub-pixel offsets from the pixel's centre "
                                       "(the window's --refine takes the same ones)")
-      ->type_name("N")->check(CLI::Range(1, kMaxSamples));
+      ->type_name("N")->check(whole_between(1, kMaxSamples));
   c.add_option("--timeout", timeout_, "Stop a render that runs longer, with exit status 124; nothing it wrote "
                                       "is left")->type_name("SECONDS")->check(finite_between(0.001, 1e8));
   channels_.add_to(c);
@@ -132,6 +133,17 @@ int RenderCommand::run() const {
       throw UsageError{message};
     }
     req.frames = static_cast<int>(frames);
+  }
+  if (!req.take) {
+    // iFrame is an int: the sequence's last frame must have one (--time 1e300 made an undefined cast).
+    const double first = req.frame ? *req.frame : std::floor(req.time * req.fps + 1e-9);
+    const double last = first + std::max(req.frames, 1) - 1;
+    if (first < INT_MIN || last > INT_MAX) {
+      char message[200];
+      std::snprintf(message, sizeof message, "the frames would reach iFrame %.10g, past what an int holds (%d to %d): "
+                    "a smaller --time, --frame or --frames", first < INT_MIN ? first : last, INT_MIN, INT_MAX);
+      throw UsageError{message};
+    }
   }
   req.codec = codec_;
   if (!frame_range_.empty()) req.frame_range = parse_frame_range(frame_range_, "--frame-range");

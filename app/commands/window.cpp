@@ -13,7 +13,7 @@ WindowCommand::WindowCommand(CLI::App& app) {
   app.add_option("--size", size_, "Window size in screen coordinates")->type_name("WxH");
   app.add_option("--shot-dir", shot_dir_, "Directory for F12 screenshots")->type_name("DIR");
   app.add_option("--shot-format", shot_format_, "Screenshot format")->check(CLI::IsMember({"png", "exr"}));
-  app.add_option("--shot-scale", shot_scale_, "Render screenshots at N times the window's pixels")->check(CLI::Range(1, 16));
+  app.add_option("--shot-scale", shot_scale_, "Render screenshots at N times the window's pixels")->check(whole_between(1, 16));
   app.add_option("--watch", watch_, "File watching backend")->check(CLI::IsMember({"auto", "inotify", "poll"}));
   app.add_flag("-v,--verbose", verbose_, "Log reloads and presented frames to stderr");
   app.add_flag("--no-ui", no_ui_, "Start with the interface hidden (F2 shows it)");
@@ -28,7 +28,7 @@ WindowCommand::WindowCommand(CLI::App& app) {
       ->type_name("SECONDS")->check(finite_between(0.001, 3600.0));
   app.add_option("--refine", refine_, "A picture at rest is refined to N supersamples per pixel, as render "
                                       "--samples N draws them; 0 or 1 turns it off")
-      ->type_name("N")->check(CLI::Range(0, kMaxSamples));
+      ->type_name("N")->check(whole_between(0, kMaxSamples));
   channels_.add_to(app);
 }
 

@@ -367,7 +367,14 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"--tile-limit inf", "--tile-limit: 'inf' is not a number"},
       {"render " + g + " -o " + out + " --samples 0", "--samples"},
       {"render " + g + " -o " + out + " --samples 5000", "--samples"},
-      {"--refine -1", "--refine"},
+      {"--refine -1", "--refine: '-1' is not a whole number from 0 to 1024"},
+      // CLI11 said "Could not convert: --frame = 99999999999", and printed DBL_MAX in full for 'abc'.
+      {"render " + g + " -o " + out + " --frame 99999999999", "--frame: '99999999999' is not a whole number from 0 to 2147483647"},
+      {"render " + g + " -o " + out + " --frame abc", "--frame: 'abc' is not a whole number from 0 to 2147483647"},
+      {"render " + g + " -o " + out + " --samples 1.5", "--samples: '1.5' is not a whole number from 1 to 1024"},
+      // iFrame is an int: the frame that --time or --frame and --frames reach must be one (an undefined cast).
+      {"render " + g + " -o " + out + " --time 1e300", "the frames would reach iFrame 6e+301, past what an int holds"},
+      {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frame 2147483647 --frames 10", "the frames would reach iFrame 2147483656"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 2:4", "--frame-range 2:4: the sequence has frames 0 to 3"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 3:1", "--frame-range '3:1': FIRST comes after LAST"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 1-2", "--frame-range '1-2': expected FIRST:LAST"},
