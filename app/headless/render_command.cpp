@@ -265,7 +265,8 @@ int render_frames(const RenderRequest& req) {
     if (replay && !take_knobs(i)) return fail(error, kExitShaderError);
     if (replay) frame_wall = replay->wall(i);
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
-    const std::filesystem::path out = sequence ? *sequence_path(req.out, i) : req.out;
+    // A video's frames have no files; a still's and a sequence's each have one.
+    const std::filesystem::path out = video ? req.out : sequence ? *sequence_path(req.out, i) : req.out;
     if (req.skip_existing && exists_on_disk(out)) {  // whole: frames are renamed into place
       graph.keyboard().end_frame();
       if (sequence) progress.show(total - count + n + 1);
