@@ -1,5 +1,9 @@
 #include "commands/accuracy.h"
 
+#include <cmath>
+#include <string>
+
+#include "commands/cli_options.h"
 #include "headless/accuracy_command.h"
 
 namespace rm::cli {
@@ -22,6 +26,7 @@ int AccuracyCommand::run() const {
   req.scene = scene_;
   req.source = source_.source();
   req.size = parse_size(size_, "--size");
+  if (!std::isfinite(time_)) throw UsageError{"--time '" + std::to_string(time_) + "': not a finite number"};
   req.time = time_;
   req.out = out_;
   return accuracy_command(req);

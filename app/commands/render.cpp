@@ -99,6 +99,12 @@ void RenderCommand::take_into(RenderRequest& req) const {
   const double span = take->duration();
   req.fps = req.take_fps > 0 ? req.take_fps : span > 0 ? (take->frames.size() - 1) / span : 60.0;
   req.frames = TakeReplay(*take, req.take_fps).frames();
+  if (req.frames > kMaxFrames) {
+    char message[160];
+    std::snprintf(message, sizeof message, "the take at %g frames a second is %s%d frames; at most %d", req.fps,
+                  req.frames == INT_MAX ? "over " : "", req.frames, kMaxFrames);
+    throw UsageError{message};
+  }
   if (!is_video_path(req.out) && !sequence_path(req.out, 0))
     throw UsageError{"'" + req.out.string() + "': a take is a sequence of " + std::to_string(req.frames) +
                      " frames: give OUT a counter such as %04d, or a video (" + video_extensions() + ")"};

@@ -319,7 +319,9 @@ FrameInputs take_inputs_at(const Take& take, double wall, glm::ivec2 size, const
 
 int TakeReplay::frames() const {
   if (fps_ <= 0) return static_cast<int>(take_.frames.size());
-  return static_cast<int>(std::floor(take_.duration() * fps_ + 1e-9)) + 1;
+  // A take of hours at a high rate is more frames than an int holds: say the most.
+  const double count = std::floor(take_.duration() * fps_ + 1e-9) + 1;
+  return count < INT_MAX ? static_cast<int>(count) : INT_MAX;
 }
 
 double TakeReplay::wall(int index) const {
