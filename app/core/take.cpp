@@ -207,7 +207,8 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
   }
   try {
     const json doc = json::parse(*text);
-    if (!doc.is_object() || field<int>(doc, "raymarching_take", 0) != kFormat) {
+    // Compared as JSON: a float there (1e300) is no version, and no cast to int.
+    if (!doc.is_object() || doc.value("raymarching_take", json()) != json(kFormat)) {
       *error = where + "not a take of this version (no \"raymarching_take\": " + std::to_string(kFormat) + ")";
       return std::nullopt;
     }

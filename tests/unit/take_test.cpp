@@ -127,6 +127,7 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
   };
   EXPECT_NE(error_of("{ \"raymarching_take\": 1, ").find("parse error"), std::string::npos);
   EXPECT_NE(error_of("{\"frames\": []}").find("not a take of this version"), std::string::npos);
+  EXPECT_NE(error_of("{\"raymarching_take\": 1e300}").find("not a take of this version"), std::string::npos);
   EXPECT_NE(error_of("{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": []}").find("holds no frames"),
             std::string::npos);
   EXPECT_NE(error_of("{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": [{\"w\": 0, \"t\": 0, \"f\": 0}]}")
