@@ -3,6 +3,7 @@
 #include <OpenImageIO/hash.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -58,20 +59,25 @@ T field(const json& object, const char* name, T fallback) {
   return it == object.end() || it->is_null() ? fallback : it->get<T>();
 }
 
-// A whole number of the take's, as an int. nlohmann casts a float to an int
-// unchecked (undefined past int's range), so anything but an int is refused.
-struct NotAnInt {
+// A number of the take's that does not fit what it is read into. nlohmann
+// casts unchecked (undefined past an int's or a float's range).
+struct OutOfRange {
   std::string text;
+  const char* kind;  // what it should have been
 };
 int int_of(const json& v) {
   const bool in_range = v.is_number_unsigned() ? v.get<std::uint64_t>() <= INT_MAX
                                                : v.is_number_integer() && v.get<std::int64_t>() >= INT_MIN &&
                                                      v.get<std::int64_t>() <= INT_MAX;
-  if (!in_range) throw NotAnInt{v.dump()};
+  if (!in_range) throw OutOfRange{v.dump(), "a whole number that fits an int"};
   return v.get<int>();
 }
+float float_of(const json& v) {
+  if (!v.is_number() || !(std::fabs(v.get<double>()) <= FLT_MAX)) throw OutOfRange{v.dump(), "a number that fits a float"};
+  return v.get<float>();
+}
 
-glm::vec4 vec4_of(const json& v) { return {v.at(0).get<float>(), v.at(1).get<float>(), v.at(2).get<float>(), v.at(3).get<float>()}; }
+glm::vec4 vec4_of(const json& v) { return {float_of(v.at(0)), float_of(v.at(1)), float_of(v.at(2)), float_of(v.at(3))}; }
 
 }  // namespace
 
@@ -234,7 +240,7 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     TakeFrame state;
     for (const auto& line : doc.at("frames")) {
       state.wall = line.at("w").get<double>();
-      state.time = line.at("t").get<float>();
+      state.time = float_of(line.at("t"));
       state.frame = int_of(line.at("f"));
       if (line.contains("r")) state.size = {int_of(line.at("r").at(0)), int_of(line.at("r").at(1))};
       if (state.size.x <= 0 || state.size.y <= 0) {
@@ -248,7 +254,7 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
         return std::nullopt;
       }
       if (line.contains("m")) state.mouse = vec4_of(line.at("m"));
-      if (line.contains("c")) state.cursor = {line.at("c").at(0).get<float>(), line.at("c").at(1).get<float>()};
+      if (line.contains("c")) state.cursor = {float_of(line.at("c").at(0)), float_of(line.at("c").at(1))};
       state.keys.clear();
       for (const auto& k : field<json>(line, "k", json::array()))
         state.keys.push_back({int_of(k.at(0)), int_of(k.at(1)) != 0});
@@ -275,8 +281,8 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     // nlohmann's own words say where: "parse error at line 3, column 7: ..." or a missing key.
     *error = where + e.what();
     return std::nullopt;
-  } catch (const NotAnInt& e) {
-    *error = where + "expected a whole number, not " + e.text;
+  } catch (const OutOfRange& e) {
+    *error = where + "expected " + e.kind + ", not " + e.text;
     return std::nullopt;
   }
 }

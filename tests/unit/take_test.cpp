@@ -138,9 +138,14 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
                 .find("comes before"),
             std::string::npos);
   const std::string frame = "{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": [{\"w\": 0, \"t\": 0, ";
-  EXPECT_NE(error_of(frame + "\"f\": 1e300, \"r\": [2, 2]}]}").find("expected a whole number, not 1e+300"),
+  EXPECT_NE(error_of(frame + "\"f\": 1e300, \"r\": [2, 2]}]}").find("expected a whole number that fits an int, not 1e+300"),
             std::string::npos);  // nlohmann's cast of it to an int is undefined
   EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [2, 18446744073709551615]}]}").find("expected a whole number"),
+            std::string::npos);
+  EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [2, 2]}, {\"w\": 1, \"t\": 1e300, \"f\": 1}]}")
+                .find("expected a number that fits a float, not 1e+300"),
+            std::string::npos);  // a double past a float's range: the conversion is undefined
+  EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [2, 2], \"m\": [0, 0, -1e39, 0]}]}").find("fits a float"),
             std::string::npos);
   EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [100000, 2]}]}").find("frame 0's window is 100000x2, over 16384"),
             std::string::npos);
