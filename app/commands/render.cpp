@@ -140,17 +140,6 @@ int RenderCommand::run() const {
     }
     req.frames = static_cast<int>(frames);
   }
-  if (!req.take) {
-    // iFrame is an int: the sequence's last frame must have one (--time 1e300 made an undefined cast).
-    const double first = req.frame ? *req.frame : std::floor(req.time * req.fps + 1e-9);
-    const double last = first + std::max(req.frames, 1) - 1;
-    if (first < INT_MIN || last > INT_MAX) {
-      char message[200];
-      std::snprintf(message, sizeof message, "the frames would reach iFrame %.10g, past what an int holds (%d to %d): "
-                    "a smaller --time, --frame or --frames", first < INT_MIN ? first : last, INT_MIN, INT_MAX);
-      throw UsageError{message};
-    }
-  }
   req.codec = codec_;
   if (!frame_range_.empty()) req.frame_range = parse_frame_range(frame_range_, "--frame-range");
   // OUT with a counter and no --frames is a sequence of one frame, f_0000.png, not a file named f_%04d.png.

@@ -1,6 +1,7 @@
 #include "headless/render_command.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -70,6 +71,16 @@ int render_frames(const RenderRequest& req) {
   const bool sequence = req.frames > 0;
   const bool video = is_video_path(req.out);
   const VideoSettings video_settings{req.size, req.fps, req.codec, req.crf};
+  // iFrame of the first frame; an int, like the last one's (--time 1e300 made an undefined cast).
+  const double first_iframe = req.take ? 0 : req.frame ? *req.frame : std::floor(req.time * req.fps + 1e-9);
+  const double last_iframe = first_iframe + std::max(req.frames, 1) - 1;
+  if (first_iframe < INT_MIN || last_iframe > INT_MAX) {
+    char message[200];
+    std::snprintf(message, sizeof message, "the frames would reach iFrame %.10g, past what an int holds (%d to %d): "
+                  "a smaller --time, --frame or --frames", first_iframe < INT_MIN ? first_iframe : last_iframe,
+                  INT_MIN, INT_MAX);
+    return fail(message, kExitUsage);
+  }
   if (req.frame_range) {
     if (!sequence) return fail("--frame-range is a slice of a sequence: give --frames COUNT too", kExitUsage);
     if (req.frame_range->y >= req.frames)
@@ -164,8 +175,7 @@ int render_frames(const RenderRequest& req) {
   const int first = req.frame_range ? req.frame_range->x : 0;
   MotionBlur motion{req.shutter, req.motion_samples, req.fps, {}};
   const int count = req.frame_range ? req.frame_range->y - first + 1 : sequence ? req.frames : 1;
-  const int first_frame =
-      req.take ? 0 : req.frame ? *req.frame : static_cast<int>(std::floor(req.time * req.fps + 1e-9));
+  const int first_frame = static_cast<int>(first_iframe);
   const auto date = req.date.value_or(std::chrono::system_clock::now());
   // A take's frame `n`: its inputs where the replay is in the take, and what
   // happened since the frame before (a click, keys, a knob) once.
@@ -266,7 +276,7 @@ int render_frames(const RenderRequest& req) {
     if (replay) frame_wall = replay->wall(i);
     const FrameInputs in = inputs_at(first_frame + i, req.time + i / req.fps, i / req.fps);
     // A video's frames have no files; a still's and a sequence's each have one.
-    const std::filesystem::path out = video ? req.out : sequence ? *sequence_path(req.out, i) : req.out;
+    const std::filesystem::path out = sequence && !video ? *sequence_path(req.out, i) : req.out;
     if (req.skip_existing && exists_on_disk(out)) {  // whole: frames are renamed into place
       graph.keyboard().end_frame();
       if (sequence) progress.show(total - count + n + 1);
