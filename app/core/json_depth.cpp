@@ -2,8 +2,8 @@
 
 namespace rm {
 
-std::optional<TextPosition> json_nested_too_deep(std::string_view text, int limit) {
-  TextPosition at;
+std::optional<TooDeep> json_nested_too_deep(std::string_view text, int limit) {
+  int line = 1, column = 1;
   int depth = 0;
   bool in_string = false, escaped = false;
   for (char c : text) {
@@ -14,15 +14,16 @@ std::optional<TextPosition> json_nested_too_deep(std::string_view text, int limi
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
-      if (++depth > limit) return at;
+      if (++depth > limit)
+        return TooDeep{line, column, "arrays and objects nested deeper than " + std::to_string(limit) + " levels"};
     } else if (c == ']' || c == '}') {
       --depth;
     }
     if (c == '\n') {
-      ++at.line;
-      at.column = 1;
+      ++line;
+      column = 1;
     } else {
-      ++at.column;
+      ++column;
     }
   }
   return std::nullopt;

@@ -119,8 +119,7 @@ bool is_shadertoy_json(const std::filesystem::path& path) { return path.extensio
 std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,
                                                     std::string* error) {
   if (const auto deep = json_nested_too_deep(text)) {
-    *error = std::to_string(deep->line) + ":" + std::to_string(deep->column) +
-             ": arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+    *error = std::to_string(deep->line) + ":" + std::to_string(deep->column) + ": " + deep->message;
     return std::nullopt;
   }
   json doc;

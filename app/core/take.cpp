@@ -207,8 +207,8 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
   }
   const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
   if (const auto deep = json_nested_too_deep(*text)) {
-    *error = where + "at line " + std::to_string(deep->line) + ", column " + std::to_string(deep->column) +
-             ": arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+    *error = where + "at line " + std::to_string(deep->line) + ", column " + std::to_string(deep->column) + ": " +
+             deep->message;
     return std::nullopt;
   }
   try {
