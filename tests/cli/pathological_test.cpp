@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <thread>
 #include <vector>
 
@@ -222,8 +221,7 @@ TEST_F(Pathological, ASignalToTheWholeJobIsAStopNotAGlslangCrash) {
   kill(p.worker, SIGTERM);
   int status = 0;
   waitpid(p.host, &status, 0);
-  std::ifstream in(err);
-  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string said = test::read_file(err);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM) << said;
   EXPECT_EQ(said, "raymarching: error: the render was stopped by SIGTERM; nothing was written\n");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
