@@ -35,9 +35,20 @@ void mainCubemap(out vec4 c, in vec2 f, in vec3 ro, in vec3 rd) {
 
 std::string text_of(const json& v) {
   if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_unsigned()) return std::to_string(v.get<unsigned long long>());
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   return "";
+}
+
+// The input's "channel", 0 to 3, or -1. Compared as JSON: get<int>() would
+// wrap 2^32 to 0.
+int channel_of(const json& input) {
+  const auto it = input.find("channel");
+  if (it == input.end() || !it->is_number_integer()) return -1;
+  for (int channel = 0; channel < 4; ++channel)
+    if (*it == channel) return channel;
+  return -1;
 }
 
 // What stands in for media that is not in --media, by input type: a pass
@@ -205,8 +216,8 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     const json& inputs = p.pass->contains("inputs") ? (*p.pass)["inputs"] : json::array();
     for (const json& input : inputs) {
       if (!input.is_object()) continue;
-      const int channel = input.contains("channel") && input["channel"].is_number_integer() ? input["channel"].get<int>() : -1;
-      if (channel < 0 || channel > 3) continue;
+      const int channel = channel_of(input);
+      if (channel < 0) continue;
       const std::string ctype = input.contains("ctype") ? text_of(input["ctype"]) : input.contains("type") ? text_of(input["type"]) : "";
       const std::string src = input.contains("src") ? text_of(input["src"]) : input.contains("filepath") ? text_of(input["filepath"]) : "";
       const std::string where = p.file + " iChannel" + std::to_string(channel);

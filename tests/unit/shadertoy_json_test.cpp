@@ -119,6 +119,19 @@ TEST(ShadertoyJson, UnknownPassAndInputTypesAreOneWarningEachAndTheRestRuns) {
   EXPECT_NE(p->warnings[1].find("input type 'webcam' is not supported"), std::string::npos);
 }
 
+// Only channels 0 to 3 exist: a larger number, even one that a cast to int
+// would wrap to 0 (2^32) or -1 (2^64 - 1), binds nothing.
+TEST(ShadertoyJson, AChannelPastThreeBindsNothing) {
+  const std::string json = R"({"renderpass": [{"type": "image", "code": "x", "inputs": [
+      {"ctype": "keyboard", "channel": 4294967296}, {"ctype": "keyboard", "channel": 18446744073709551615},
+      {"ctype": "keyboard", "channel": -4294967295}, {"ctype": "keyboard", "channel": 4},
+      {"ctype": "keyboard", "channel": 2}]}]})";
+  std::string error;
+  auto p = read(json, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["image.frag"], "x\n#pragma channel2 keyboard\n");
+}
+
 TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
   std::string error;
   EXPECT_FALSE(read("{\"Shader\": {\n  \"renderpass\": [,]}}", &error));
