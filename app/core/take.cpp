@@ -22,6 +22,9 @@ namespace {
 using json = nlohmann::ordered_json;
 constexpr int kFormat = 1;                     // "raymarching_take": the file's version
 constexpr std::uintmax_t kMaxTakeBytes = 256u << 20;
+// A frame's "w" at most (3 years): the replay adds it to iDate in the system
+// clock's nanoseconds, whose int64 ends at 292 years.
+constexpr double kMaxTakeSeconds = 1e8;
 
 json floats(const float* v, int n) {
   json out = json::array();
@@ -240,6 +243,11 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     TakeFrame state;
     for (const auto& line : doc.at("frames")) {
       state.wall = line.at("w").get<double>();
+      if (!(state.wall >= 0 && state.wall <= kMaxTakeSeconds)) {
+        *error = where + "frame " + std::to_string(take.frames.size()) + "'s \"w\" is " + line.at("w").dump() +
+                 " s, not from 0 to " + std::to_string(static_cast<long>(kMaxTakeSeconds)) + " s (3 years) into the take";
+        return std::nullopt;
+      }
       state.time = float_of(line.at("t"));
       state.frame = int_of(line.at("f"));
       if (line.contains("r")) state.size = {int_of(line.at("r").at(0)), int_of(line.at("r").at(1))};

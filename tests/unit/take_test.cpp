@@ -147,6 +147,14 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
             std::string::npos);  // a double past a float's range: the conversion is undefined
   EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [2, 2], \"m\": [0, 0, -1e39, 0]}]}").find("fits a float"),
             std::string::npos);
+  // A frame's wall clock becomes iDate in nanoseconds: past an int64's range the conversion is undefined.
+  EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [2, 2]}, {\"w\": 1e300, \"t\": 1, \"f\": 1}]}")
+                .find("frame 1's \"w\" is 1e+300 s, not from 0 to 100000000 s (3 years) into the take"),
+            std::string::npos);
+  EXPECT_NE(error_of("{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": [{\"w\": -5, \"t\": 0, \"f\": 0, "
+                     "\"r\": [2, 2]}]}")
+                .find("frame 0's \"w\" is -5 s"),
+            std::string::npos);
   EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [100000, 2]}]}").find("frame 0's window is 100000x2, over 16384"),
             std::string::npos);
   const std::string deep = "{\"raymarching_take\": 1, \"scene\": \"s.frag\",\n \"channels\": " + std::string(1000000, '[');
