@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -108,7 +109,11 @@ glm::vec4 parse_mouse(const std::string& text) {
   std::vector<double> parts;
   std::stringstream ss(text);
   std::string item;
-  while (std::getline(ss, item, ',')) parts.push_back(parse_number(item, "--mouse"));
+  while (std::getline(ss, item, ',')) {
+    parts.push_back(parse_number(item, "--mouse"));
+    // iMouse is floats: a double past their range would be an undefined cast.
+    if (std::fabs(parts.back()) > FLT_MAX) throw UsageError{"--mouse '" + text + "': " + item + " is out of a float's range"};
+  }
   if (parts.size() != 2 && parts.size() != 4) throw UsageError{"--mouse '" + text + "': expected X,Y or X,Y,CX,CY"};
   if (parts.size() == 2) return glm::vec4(parts[0], parts[1], 0, 0);
   return glm::vec4(parts[0], parts[1], parts[2], parts[3]);
