@@ -374,6 +374,7 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --samples 1.5", "--samples: '1.5' is not a whole number from 1 to 1024"},
       // iFrame is an int: the frame that --time or --frame and --frames reach must be one (an undefined cast).
       {"accuracy " + g + " --time nan", "--time 'nan': not a finite number"},
+      {"accuracy " + g + " --time 1e300", "--time 1e+300: iFrame would be 6e+301, past what an int holds"},
       {"render " + g + " -o " + out + " --mouse 1e300,0", "--mouse '1e300,0': 1e300 is out of a float's range"},
       {"render " + g + " -o " + out + " --time 1e300", "the frames would reach iFrame 6e+301, past what an int holds"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frame 2147483647 --frames 10", "the frames would reach iFrame 2147483656"},
