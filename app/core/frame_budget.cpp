@@ -54,7 +54,12 @@ int ScaleController::first_step_under(double share, int to) const {
 
 void ScaleController::resized(double pixels) {
   if (pixels <= 0 || pixels == full_pixels_) return;
-  if (full_pixels_ > 0 && count_ > 0) {
+  if (full_pixels_ > 0 && count_ > 0 && full_pixels_ < kFewPixels && pixels > full_pixels_) {
+    // What a window this small draws in is what any draw costs: it says
+    // nothing of the cost of a pixel. Measured again, from the lowest step.
+    forget();
+    step_ = kSteps - 1;
+  } else if (full_pixels_ > 0 && count_ > 0) {
     for (int i = 0; i < count_; ++i) estimates_[static_cast<size_t>(i)] *= pixels / full_pixels_;
     step_ = std::min(first_step_under(kHoldAt, kSteps), kSteps - 1);
     raise_votes_ = 0;

@@ -24,6 +24,9 @@ class ScaleController {
   static constexpr int kSteps = 25;          // 1, 2^-1/8, ..., 1/8: each step 19% more pixels
   static constexpr double kHoldAt = 0.9;     // of the budget: above it, go down
   static constexpr double kRaiseAt = 0.65;   // of the budget: a larger step must fit under it
+  // A window of fewer pixels draws in about what any draw costs: its frames
+  // are not scaled up to a larger window's (resized).
+  static constexpr double kFewPixels = 64.0 * 64.0;
 
   explicit ScaleController(double budget_ms) : budget_ms_(budget_ms) {}
 
@@ -46,6 +49,8 @@ class ScaleController {
   // before, grow or shrink with it, and the scale is chosen again from them
   // at once. (A window made larger would else draw its next frame at the old
   // scale: many budgets long, in one tile.) The first call only records it.
+  // From fewer than kFewPixels, a larger window is measured again instead,
+  // from the lowest step.
   void resized(double pixels);
 
  private:

@@ -158,6 +158,29 @@ TEST(ScaleController, AResizedWindowIsScaledAtOnceByItsPixels) {
   EXPECT_NEAR(c.full_frame_ms(), 8.5, 1e-6);
 }
 
+// A window a few pixels small draws in what any draw costs, whatever its
+// pixels: scaled up with them, that made a light scene look thousands of
+// times heavier. (1x1 grown to 6000x4000: tori's first picture took 2250
+// tiles, and an F12 right after was not done in 25 s.) The estimates start
+// over from the lowest step, as a new program's do.
+TEST(ScaleController, AWindowGrownFromAFewPixelsMeasuresAgainFromTheLowestStep) {
+  ScaleController c(kBudget);
+  c.resized(1);
+  run(c, 10, [](double) { return 0.2; });
+  EXPECT_EQ(c.scale(), 1.0);
+  c.resized(6000.0 * 4000);
+  EXPECT_EQ(c.full_frame_ms(), 0.0) << "no estimate is scaled up from one pixel";
+  EXPECT_EQ(c.scale(), ScaleController::scale_of(ScaleController::kSteps - 1));
+  auto cost = [](double s) { return 0.2 + 600.0 * s * s; };  // a light scene, 6000x4000
+  const std::vector<double> scales = run(c, 10, cost);
+  EXPECT_GT(scales.back(), ScaleController::scale_of(ScaleController::kSteps - 1)) << "it climbed";
+  EXPECT_LE(cost(scales.back()), ScaleController::kHoldAt * kBudget);
+  // From a window large enough, the estimates grow with the pixels, as before.
+  const double measured = c.full_frame_ms();
+  c.resized(6000.0 * 4500);
+  EXPECT_NEAR(c.full_frame_ms(), 1.125 * measured, 1e-6);
+}
+
 // Every pixel in exactly one tile.
 void expect_covers_once(glm::ivec2 size, const std::vector<glm::ivec4>& tiles) {
   std::vector<int> hits(static_cast<size_t>(size.x) * size.y, 0);
