@@ -484,7 +484,16 @@ class WindowApp {
     else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
     // A screenshot in progress goes first: the picture waits for it, so
     // that each turn of the loop draws one slice of the budget, not two.
-    if (!shots_.empty() && !holds_shots()) continue_shot();
+    if (!shots_.empty() && !holds_shots()) {
+      continue_shot();
+      // The picture on screen waits for the shot: presenting it again after
+      // each slice cost a 4K shot of tori as much as its tiles (6.9 s, not
+      // 4.3). Input (ui_frames_) and F12 are presented at once; the rest,
+      // such as a new error's badge, within kShotPresentIntervalNs.
+      if (!shots_.empty() && ui_frames_ == 0 && !shot_requested_ &&
+          steady_ns() - last_present_ns_ < kShotPresentIntervalNs)
+        return;
+    }
     const bool straight = drawing_ && shots_.empty() && !holds_for_build() && continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -502,6 +511,7 @@ class WindowApp {
       screenshot();
     }
     glfwSwapBuffers(window_);
+    last_present_ns_ = steady_ns();
     ui_frames_ = std::max(0, ui_frames_ - 1);
     // Only once the program has drawn into it: a picture held for a build
     // (holds_for_build) shows the previous program's still.
@@ -1082,6 +1092,8 @@ class WindowApp {
   bool twin_build_ = false;        // ... and builds twins
   int settle_tried_ = -1;          // the generation whose tweak's exact program was built
   long long last_swap_ns_ = 0, twins_started_ns_ = 0;
+  long long last_present_ns_ = 0;  // the last glfwSwapBuffers
+  static constexpr long long kShotPresentIntervalNs = 100'000'000;
   // The builder draws each new program once, so that llvmpipe generates its
   // code there and the window's first draw finds it in Mesa's shader cache.
   // With the cache off it would be generated twice.
