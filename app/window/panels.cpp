@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -106,20 +107,26 @@ void time_controls(const UiModel& model, UiChanges* changes) {
     changes->speed = speed;
 }
 
+// Dear ImGui's sliders assert (an abort) past half of a float's or an int's
+// range: "// ui: max=3e38" closed the window. Their bounds stop there.
+float slider_bound(float v) { return std::clamp(v, -FLT_MAX / 2, FLT_MAX / 2); }
+int int_slider_bound(float v) { return static_cast<int>(std::clamp(double(v), double(INT_MIN / 2), double(INT_MAX / 2))); }
+
 bool uniform_control(const UserUniform& u, UniformValue& v) {
   float f[4] = {0, 0, 0, 0};
   std::copy_n(v.value.begin(), std::min<size_t>(4, v.value.size()), f);
   const char* name = u.name.c_str();
-  const float speed = u.step > 0 ? u.step : (u.max - u.min) / 200.0f;
+  const float min = slider_bound(u.min), max = slider_bound(u.max);
+  const float speed = u.step > 0 ? u.step : (max - min) / 200.0f;
   bool changed = false;
   switch (u.type) {
     case UserUniform::Type::Float:
-      changed = ImGui::SliderFloat(name, f, u.min, u.max, "%.3f");
-      if (changed && u.step > 0) f[0] = u.min + std::round((f[0] - u.min) / u.step) * u.step;
+      changed = ImGui::SliderFloat(name, f, min, max, "%.3f");
+      if (changed && u.step > 0) f[0] = min + std::round((f[0] - min) / u.step) * u.step;
       break;
     case UserUniform::Type::Int: {
-      int i = static_cast<int>(std::lround(f[0]));
-      changed = ImGui::SliderInt(name, &i, static_cast<int>(u.min), static_cast<int>(u.max));
+      int i = static_cast<int>(std::clamp(std::round(double(f[0])), double(INT_MIN), double(INT_MAX)));
+      changed = ImGui::SliderInt(name, &i, int_slider_bound(u.min), int_slider_bound(u.max));
       f[0] = static_cast<float>(i);
       break;
     }
@@ -129,12 +136,12 @@ bool uniform_control(const UserUniform& u, UniformValue& v) {
       f[0] = b ? 1.0f : 0.0f;
       break;
     }
-    case UserUniform::Type::Vec2: changed = ImGui::DragFloat2(name, f, speed, u.min, u.max); break;
+    case UserUniform::Type::Vec2: changed = ImGui::DragFloat2(name, f, speed, min, max); break;
     case UserUniform::Type::Vec3:
-      changed = u.color ? ImGui::ColorEdit3(name, f) : ImGui::DragFloat3(name, f, speed, u.min, u.max);
+      changed = u.color ? ImGui::ColorEdit3(name, f) : ImGui::DragFloat3(name, f, speed, min, max);
       break;
     case UserUniform::Type::Vec4:
-      changed = u.color ? ImGui::ColorEdit4(name, f) : ImGui::DragFloat4(name, f, speed, u.min, u.max);
+      changed = u.color ? ImGui::ColorEdit4(name, f) : ImGui::DragFloat4(name, f, speed, min, max);
       break;
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s:%d", u.path.c_str(), u.line);

@@ -27,6 +27,7 @@ Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
 animated one, and so does an animated one while paused.
 """
+import math
 import os
 import re
 import shlex
@@ -737,10 +738,52 @@ def shot_over_the_largest_picture():
           status == 0 and not [n for n in os.listdir(work) if n.endswith(".png")], (status, os.listdir(work)))
 
 
+WIDE_RANGES = """uniform float wide; // ui: min=-3e38 max=3e38 default=1
+uniform int whole; // ui: min=-2147483648 max=2147483647 default=1
+uniform vec2 pair; // ui: min=-3e38 max=3e38
+void mainImage(out vec4 c, in vec2 f) { c = vec4(wide * 1e-38, float(whole) * 1e-9, pair.x, 1.0); }
+"""
+
+
+def controls_of_any_range():
+    """A uniform's slider over any range a float or an int holds: Dear ImGui
+    asserts past half of it, and the open panel aborted the window (status
+    134) at its first frame. It opens, takes a drag on each control, and
+    quits with status 0."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-ranges-")
+    scene = os.path.join(work, "ranges.frag")
+    with open(scene, "w") as f:
+        f.write(WIDE_RANGES)
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, scene, "--size", "640x400", "--controls", "--shot-dir", work, "-v"], out_path,
+                       err_path, work)
+    window = first_frame_window(proc, "ranges.frag", err_path)
+    check("sliders over a float's and an int's whole range open in the panel", window is not None,
+          open(err_path).read()[-500:])
+    if not window:
+        return
+    # Each row of the open panel, from Time's down past the uniforms', with
+    # time for a frame between the press, the move and the release.
+    for y in range(30, 260, 11):
+        for action in (("mousemove", "--window", window, "400", str(y)), ("mousedown", "1"),
+                       ("mousemove", "--window", window, "560", str(y)), ("mouseup", "1")):
+            xdotool(*action)
+            time.sleep(0.05)
+    shot = take_screenshot(window, out_path)
+    values = {name: metadata(shot).get("raymarching:uniform:" + name) for name in ("wide", "whole", "pair")} if shot else {}
+    numbers = [float(n) for v in values.values() if v for n in v.split(",")]
+    check("... each is dragged to a finite value, which the shot records",
+          len(numbers) == 4 and all(math.isfinite(n) for n in numbers) and values["wide"] != "1"
+          and values["whole"] != "1" and values["pair"] != "0,0", values)
+    status = quit_with(proc, window, "q")
+    check("... and the window quits with status 0", status == 0, (status, open(err_path).read()[-500:]))
+
+
 if __name__ == "__main__":
     try:
         main()
         shot_over_the_largest_picture()
+        controls_of_any_range()
         tweak_at_rest()
         step_paused_clock()
         scene_default_channel()
