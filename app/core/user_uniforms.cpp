@@ -139,8 +139,9 @@ std::string uniform_value_text(const UserUniform::Type type, const std::vector<f
   if (type == UserUniform::Type::Bool) return !value.empty() && value[0] != 0.0f ? "true" : "false";
   std::string out;
   for (float v : value) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v == 0.0f ? 0.0f : v);  // never "-0"
+    char buf[48];  // a float written whole is at most 40 characters
+    // Never "-0"; an int whole ("%.9g" wrote 1073741824 as 1.07374182e+09).
+    std::snprintf(buf, sizeof buf, type == UserUniform::Type::Int ? "%.0f" : "%.9g", v == 0.0f ? 0.0f : v);
     out += (out.empty() ? "" : ",") + std::string(buf);
   }
   return out;

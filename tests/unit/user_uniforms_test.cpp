@@ -106,6 +106,7 @@ TEST(UserUniforms, SetGivesValuesAndRefusesWhatDoesNotFit) {
   EXPECT_FALSE(uniform_values(u, {"speed"}, &error));
   EXPECT_EQ(error, "'speed' is not NAME=VALUE");
   EXPECT_EQ(uniform_value_text(UserUniform::Type::Float, {-0.0f}), "0") << "never -0";
+  EXPECT_EQ(uniform_value_text(UserUniform::Type::Int, {1073741824.0f}), "1073741824") << "an int is whole";
 }
 
 // No control holds nan or inf, and an int's value past its range was an
