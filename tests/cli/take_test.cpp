@@ -219,13 +219,14 @@ TEST_F(Take, UsedWrongItSaysHowInOneLine) {
   r = test::run_binary("render -o " + (dir_ / "x.png").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "raymarching: error: render needs SCENE, or --take TAKE\n");
-  // 30,000 years at 60 frames a second: the count was an undefined cast to int.
+  // 3 years (the longest take) at 100000 frames a second: the count was an undefined cast to int.
   write_file(dir_ / "long.take.json", "{\"raymarching_take\": 1, \"scene\": \"scene.frag\", \"frames\": [{\"w\": 0, "
-                                      "\"t\": 0, \"f\": 0, \"r\": [16, 9]}, {\"w\": 1e12, \"t\": 1, \"f\": 1}]}");
-  r = test::run_binary("render --take " + (dir_ / "long.take.json").string() + " --fps 60 -o " +
+                                      "\"t\": 0, \"f\": 0, \"r\": [16, 9]}, {\"w\": 1e8, \"t\": 1, \"f\": 1}]}");
+  r = test::run_binary("render --take " + (dir_ / "long.take.json").string() + " --fps 100000 -o " +
                        (dir_ / "x_%d.png").string());
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err, "raymarching: error: the take at 60 frames a second is over 2147483647 frames; at most 1000000\n");
+  EXPECT_EQ(r.err,
+            "raymarching: error: the take at 100000 frames a second is over 2147483647 frames; at most 1000000\n");
 }
 
 }  // namespace
