@@ -487,9 +487,10 @@ class WindowApp {
     if (!shots_.empty() && !holds_shots()) {
       continue_shot();
       // The picture on screen waits for the shot: presenting it again after
-      // each slice cost a 4K shot of tori as much as its tiles (6.9 s, not
-      // 4.3). Input (ui_frames_) and F12 are presented at once; the rest,
-      // such as a new error's badge, within kShotPresentIntervalNs.
+      // each slice cost a 4K shot of tori about as much as its tiles (5.8 to
+      // 7.0 s; now 4.5 to 5.7). Input (ui_frames_) and F12 are presented at
+      // once; the rest, such as a new error's badge, within
+      // kShotPresentIntervalNs.
       if (!shots_.empty() && ui_frames_ == 0 && !shot_requested_ &&
           steady_ns() - last_present_ns_ < kShotPresentIntervalNs)
         return;
