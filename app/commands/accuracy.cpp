@@ -1,11 +1,11 @@
 #include "commands/accuracy.h"
 
-#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "commands/cli_options.h"
+#include "core/inputs.h"
 #include "headless/accuracy_command.h"
 
 namespace rm::cli {
@@ -29,12 +29,11 @@ int AccuracyCommand::run() const {
   req.source = source_.source();
   req.size = parse_size(size_, "--size");
   if (!std::isfinite(time_)) throw UsageError{"--time '" + std::to_string(time_) + "': not a finite number"};
-  // The frame's iFrame is iTime at 60 a second, an int: past its range the cast is undefined.
-  if (std::fabs(time_ * 60.0) > INT_MAX) {
-    char message[160];
-    std::snprintf(message, sizeof message, "--time %g: iFrame would be %.10g, past what an int holds (%d to %d)", time_,
-                  time_ * 60.0, INT_MIN, INT_MAX);
-    throw UsageError{message};
+  // The frame's iFrame is iTime at 60 a second.
+  if (auto why = iframe_out_of_range(time_ * 60.0)) {
+    char time[32];
+    std::snprintf(time, sizeof time, "%g", time_);
+    throw UsageError{"--time " + std::string(time) + ": " + *why};
   }
   req.time = time_;
   req.out = out_;

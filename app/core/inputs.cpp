@@ -1,10 +1,19 @@
 #include "core/inputs.h"
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 
 namespace rm {
+
+std::optional<std::string> iframe_out_of_range(double iframe) {
+  if (iframe >= INT_MIN && iframe <= INT_MAX) return std::nullopt;
+  char message[120];
+  std::snprintf(message, sizeof message, "iFrame would be %.10g, past what an int holds (%d to %d)", iframe, INT_MIN,
+                INT_MAX);
+  return message;
+}
 
 void MouseState::press(glm::vec2 position) {
   held_ = true;

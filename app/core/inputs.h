@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ struct UniformValue {
   std::vector<float> value;  // 1 to 4 components
   std::string text;          // as written: "1.5", "true", "0.1,0.2,0.3"
 };
+
+// Why a frame's iFrame, an int, cannot be `iframe` (a cast past its range is
+// undefined): "iFrame would be 6e+301, past what an int holds (...)"; nothing when it can.
+std::optional<std::string> iframe_out_of_range(double iframe);
 
 struct FrameInputs {
   glm::vec3 resolution{1.0f, 1.0f, 1.0f};  // z is the pixel aspect ratio: 1

@@ -13,6 +13,7 @@
 #include "core/lexing.h"
 #include "core/frame_graph.h"
 #include "core/glslang_client.h"
+#include "core/inputs.h"
 #include "core/project.h"
 #include "core/renderer.h"
 #include "core/user_uniforms.h"
@@ -74,13 +75,8 @@ int render_frames(const RenderRequest& req) {
   // iFrame of the first frame; an int, like the last one's (--time 1e300 made an undefined cast).
   const double first_iframe = req.take ? 0 : req.frame ? *req.frame : std::floor(req.time * req.fps + 1e-9);
   const double last_iframe = first_iframe + std::max(req.frames, 1) - 1;
-  if (first_iframe < INT_MIN || last_iframe > INT_MAX) {
-    char message[200];
-    std::snprintf(message, sizeof message, "the frames would reach iFrame %.10g, past what an int holds (%d to %d): "
-                  "a smaller --time, --frame or --frames", first_iframe < INT_MIN ? first_iframe : last_iframe,
-                  INT_MIN, INT_MAX);
-    return fail(message, kExitUsage);
-  }
+  if (auto why = iframe_out_of_range(first_iframe < INT_MIN ? first_iframe : last_iframe))
+    return fail(*why + ": give a smaller --time, --frame or --frames", kExitUsage);
   if (req.frame_range) {
     if (!sequence) return fail("--frame-range is a slice of a sequence: give --frames COUNT too", kExitUsage);
     if (req.frame_range->y >= req.frames)

@@ -374,10 +374,10 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --samples 1.5", "--samples: '1.5' is not a whole number from 1 to 1024"},
       // iFrame is an int: the frame that --time or --frame and --frames reach must be one (an undefined cast).
       {"accuracy " + g + " --time nan", "--time 'nan': not a finite number"},
-      {"accuracy " + g + " --time 1e300", "--time 1e+300: iFrame would be 6e+301, past what an int holds"},
+      {"accuracy " + g + " --time 1e300", "--time 1e+300: iFrame would be 6e+301, past what an int holds (-2147483648 to 2147483647)"},
       {"render " + g + " -o " + out + " --mouse 1e300,0", "--mouse '1e300,0': 1e300 is out of a float's range"},
-      {"render " + g + " -o " + out + " --time 1e300", "the frames would reach iFrame 6e+301, past what an int holds"},
-      {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frame 2147483647 --frames 10", "the frames would reach iFrame 2147483656"},
+      {"render " + g + " -o " + out + " --time 1e300", "iFrame would be 6e+301, past what an int holds (-2147483648 to 2147483647): give a smaller --time"},
+      {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frame 2147483647 --frames 10", "iFrame would be 2147483656, past what an int holds"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 2:4", "--frame-range 2:4: the sequence has frames 0 to 3"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 3:1", "--frame-range '3:1': FIRST comes after LAST"},
       {"render " + g + " -o " + (dir_ / "f_%d.png").string() + " --frames 4 --frame-range 1-2", "--frame-range '1-2': expected FIRST:LAST"},
