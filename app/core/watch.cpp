@@ -36,13 +36,28 @@ bool Debouncer::settled(WatchClock::time_point now) {
 
 namespace {
 
+bool is_link(const fs::path& file) {
+  std::error_code ec;
+  return fs::is_symlink(file, ec);
+}
+
 class InotifyWatcher final : public Watcher {
  public:
   InotifyWatcher(int fd, WatchTiming timing) : fd_(fd), debounce_(timing) {}
   ~InotifyWatcher() override { close(fd_); }
 
   void watch(const std::vector<fs::path>& files) override {
-    files_ = std::set<fs::path>(files.begin(), files.end());
+    files_.clear();
+    for (const auto& f : files) {
+      files_.insert(f);
+      // A save through a symbolic link lands in its target's folder, whose
+      // events the link's folder never sees: watch the target as well.
+      if (is_link(f)) {
+        std::error_code ec;
+        fs::path target = fs::canonical(f, ec);
+        if (!ec) files_.insert(std::move(target));
+      }
+    }
     std::set<fs::path> dirs;
     for (const auto& f : files_) dirs.insert(f.parent_path());
     for (auto it = dirs_.begin(); it != dirs_.end();) {
@@ -73,7 +88,8 @@ class InotifyWatcher final : public Watcher {
         const fs::path file = dir->second / event->name;
         if (!files_.count(file)) continue;
         using E = Debouncer::Event;
-        const E kind = (event->mask & (IN_MODIFY | IN_CREATE)) ? E::Writing
+        const E kind = (event->mask & IN_CREATE) && is_link(file) ? E::Closed  // made whole, never written
+                       : (event->mask & (IN_MODIFY | IN_CREATE))  ? E::Writing
                        : (event->mask & (IN_DELETE | IN_MOVED_FROM)) ? E::Gone
                        : (event->mask & IN_MOVED_TO)                  ? E::RenamedOnto
                                                                     : E::Closed;

@@ -7,6 +7,8 @@
 // still open for writing is waited for, so a half-written file is not read.
 // A rename onto a watched file needs no quiet period: it puts the whole new
 // text in place at once, the last step of an editor's save.
+// A file that is a symbolic link is watched both as the link (pointed
+// elsewhere) and as its target (saved, in place or by rename).
 // inotify on Linux; polling of mtime (ns) and size behind the same interface.
 #pragma once
 #include <chrono>

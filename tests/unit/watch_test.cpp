@@ -120,6 +120,25 @@ TEST_P(WatchTest, NewWatchListIsHonoured) {
   EXPECT_EQ(changes_during(*watcher_, kSettle), 0);
 }
 
+// A scene opened through a symbolic link, saved where the link points: by
+// rename there (the editor opened the target), in place through the link,
+// and the link pointed at another file.
+TEST_P(WatchTest, ASceneOpenedThroughALinkIsWatchedWhereItLives) {
+  const auto link = dir_ / "link" / "scene.frag";
+  std::filesystem::create_directories(link.parent_path());
+  std::filesystem::create_symlink("../scene.frag", link);
+  watcher_->watch({link});
+  write_file(dir_ / ".scene.frag.swp", "v2\n");
+  std::filesystem::rename(dir_ / ".scene.frag.swp", scene_);
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1) << "the target saved by rename";
+  write_file(link, "v3 through the link\n");
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1) << "written in place through the link";
+  EXPECT_EQ(test::read_file(scene_), "v3 through the link\n");
+  std::filesystem::remove(link);
+  std::filesystem::create_symlink("../other.txt", link);
+  EXPECT_EQ(changes_during(*watcher_, kSettle), 1) << "the link pointed elsewhere";
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, WatchTest, ::testing::Values(WatchBackend::Inotify, WatchBackend::Poll),
                          [](const auto& info) { return info.param == WatchBackend::Inotify ? "inotify" : "poll"; });
 
