@@ -7,6 +7,7 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <set>
@@ -92,6 +93,115 @@ class CallsWithoutBody : public glslang::TIntermTraverser {
   std::map<std::string, int> first_call_;
 };
 
+// Scalars in a value of `type`: its components, times its array sizes,
+// through structs. In double: glslang's own count, an int, overflows for
+// float a[65536][65536].
+double scalars(const glslang::TType& type) {
+  double n = 0;
+  if (type.isStruct()) {
+    for (const auto& member : *type.getStruct()) n += scalars(*member.type);
+  } else {
+    n = type.isMatrix() ? type.getMatrixCols() * type.getMatrixRows() : type.getVectorSize();
+  }
+  if (type.isArray())
+    for (int d = 0; d < type.getArraySizes()->getNumDims(); ++d) n *= std::max(type.getArraySizes()->getDimSize(d), 1);
+  return n;
+}
+
+// The most scalars the arrays of one shader may hold in all (64 KB of
+// floats; as many as llvmpipe allows a fragment shader's uniforms). A CPU
+// driver took 24 s and 0.9 GB to compile an array of 16,384 floats.
+constexpr double kMaxArrayScalars = 16384;
+
+// The shader's own arrays (locals, globals, constants, parameters; not
+// uniforms, buffers or the stage's inputs and outputs), counted in scalars.
+// A CPU driver compiles code for every element of an array it indexes by a
+// variable: on llvmpipe 4,096 floats took 5.8 s and 360 MB, 65,536 took
+// 95 s and 2.8 GB, and 16,777,216 crashed the process. The driver inlines
+// every call, so a function's locals and parameters count once a call that
+// main() reaches (a function it never reaches costs nothing); globals and
+// constants count once.
+class LargeArrays : public glslang::TIntermTraverser {
+ public:
+  LargeArrays() : TIntermTraverser(true, false, true) {}  // after a function too: where it ends
+
+  bool visitAggregate(glslang::TVisit visit, glslang::TIntermAggregate* node) override {
+    if (node->getOp() == glslang::EOpFunction)
+      function_ = visit == glslang::EvPreVisit ? node->getName().c_str() : "";
+    else if (node->getOp() == glslang::EOpFunctionCall && node->isUserDefined() && visit == glslang::EvPreVisit)
+      ++calls_[node->getName().c_str()][function_];
+    return true;
+  }
+
+  void visitSymbol(glslang::TIntermSymbol* symbol) override {
+    const glslang::TType& type = symbol->getType();
+    if (!type.containsArray()) return;  // a struct of plain members the driver splits into scalars
+    const glslang::TStorageQualifier storage = type.getQualifier().storage;
+    switch (storage) {
+      case glslang::EvqUniform: case glslang::EvqBuffer: case glslang::EvqVaryingIn: case glslang::EvqVaryingOut:
+        return;
+      default: break;
+    }
+    // The first line the tree names it on: an uninitialised local has no
+    // node of its own, so that is its first use. A global's entry in the
+    // list of globals has no line; one never used costs the driver nothing.
+    if (symbol->getLoc().line <= 0) return;
+    const bool once = storage == glslang::EvqGlobal || storage == glslang::EvqConst;
+    auto [at, added] = arrays_.emplace(symbol->getId(), Array{symbol->getName().c_str(), symbol->getLoc().line,
+                                                              scalars(type), once ? "" : function_});
+    if (!added) at->second.line = std::min(at->second.line, symbol->getLoc().line);
+  }
+
+  // glslang's log line for arrays past the limit in all, at the largest.
+  std::string log() {
+    double total = 0;
+    const Array* largest = nullptr;
+    double largest_scalars = 0, largest_calls = 1;
+    for (const auto& [id, array] : arrays_) {
+      const double calls = array.function.empty() ? 1 : times_inlined(array.function);
+      total += array.scalars * calls;
+      if (!largest || array.scalars * calls > largest_scalars)
+        largest = &array, largest_scalars = array.scalars * calls, largest_calls = calls;
+    }
+    if (total <= kMaxArrayScalars) return "";
+    const auto whole = [](double n) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.15g", n);
+      return std::string(text);
+    };
+    const std::string function = largest->function.substr(0, largest->function.find('(') + 1) + ")";
+    return "ERROR: 0:" + std::to_string(largest->line) + ": '" + largest->name + "' : an array of " +
+           whole(largest->scalars) + " components" +
+           (largest_calls > 1 ? " in each of " + whole(largest_calls) + " calls of " + function : "") +
+           (total > largest_scalars ? ", and " + whole(total) + " in all the shader's arrays" : "") + "; at most " +
+           whole(kMaxArrayScalars) + " are allowed in a shader's arrays (the GL driver compiles code for each)\n";
+  }
+
+ private:
+  struct Array {
+    std::string name;
+    int line;
+    double scalars;
+    std::string function;  // the function whose every call holds a copy; empty: one copy
+  };
+
+  // How many copies of `function` the driver's inlining makes: one for
+  // main(), and for any other, the sum over its calls of their caller's.
+  double times_inlined(const std::string& function) {
+    if (function == "main(") return 1;
+    auto [at, added] = inlined_.emplace(function, 0.0);
+    if (!added) return at->second;  // known, or a cycle (an error of its own) under way
+    double n = 0;
+    for (const auto& [caller, count] : calls_[function]) n += count * times_inlined(caller);
+    return inlined_[function] = n;
+  }
+
+  std::string function_;  // mangled, as "f(vf3;"; empty outside functions
+  std::map<std::string, std::map<std::string, double>> calls_;  // callee: caller: call sites
+  std::map<std::string, double> inlined_;
+  std::map<long long, Array> arrays_;
+};
+
 // glslang's preprocessor over `text` in `shader`, or nullopt if it fails
 // (its log says why). Call on a big stack.
 std::optional<std::string> preprocessed(const std::string& text, glslang::TShader* shader) {
@@ -121,12 +231,14 @@ std::string parse_in_child(const std::string& source_text, const std::string* ac
     glslang::TIntermediate* tree = parsed ? shader.getIntermediate() : nullptr;
     DeepestNode deepest;
     CallsWithoutBody calls;
+    LargeArrays arrays;
     if (tree && tree->getTreeRoot()) {
       tree->getTreeRoot()->traverse(&deepest);
       tree->getTreeRoot()->traverse(&calls);
+      tree->getTreeRoot()->traverse(&arrays);
     }
     verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog() +
-              calls.log();
+              calls.log() + arrays.log();
     if (active_text) {
       glslang::TShader active(EShLangFragment);
       verdict += '\0' + preprocessed(*active_text, &active).value_or("");

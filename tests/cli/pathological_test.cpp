@@ -227,6 +227,37 @@ TEST_F(Pathological, ASignalToTheWholeJobIsAStopNotAGlslangCrash) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
 }
 
+// Arrays that a CPU driver compiles code for element by element: on
+// llvmpipe 16,384 floats took 24 s and 0.9 GB, and 16,777,216 crashed the
+// process after 39 s and 7 GB. Validation refuses arrays past 16,384
+// scalars in all, at the largest; an array never used, or in a function
+// never called, costs nothing (the driver drops it).
+TEST_F(Pathological, ArraysPastWhatTheDriverCanCompile) {
+  const std::string open = "void mainImage(out vec4 c, in vec2 f) {\n";
+  write_file(dir_ / "huge.frag", open + "  float a[16777216];\n  a[int(f.x)] = 1.0;\n  c = vec4(a[int(f.y)]);\n}\n");
+  // 2^32 elements: glslang's own count, an int, overflows.
+  write_file(dir_ / "square.frag", open + "  float a[65536][65536];\n  c = vec4(a[int(f.x)][int(f.y)]);\n}\n");
+  write_file(dir_ / "structs.frag", "struct S { vec4 p[64]; mat4 m; };\n" + open +
+                                        "  S s[256];\n  c = s[int(f.x)].p[int(f.y)];\n}\n");
+  write_file(dir_ / "global.frag", "vec3 big[8192];\nfloat at(int i) { return big[i].x; }\n" + open +
+                                       "  c = vec4(at(int(f.x)));\n}\n");
+  write_file(dir_ / "small.frag", open + "  float a[64];\n  a[int(f.x)] = 1.0;\n  c = vec4(a[int(f.y)]);\n}\n");
+  write_file(dir_ / "unused.frag", "float unused[16777216];\n" + kMain);
+  write_file(dir_ / "uncalled.frag", "float never(int i) { float b[16777216]; b[i] = 1.0; return b[i]; }\n" + kMain);
+  const std::string past = "at most 16384 are allowed in a shader's arrays (the GL driver compiles code for each)";
+  run_table({
+      {path("huge.frag"), 1, "huge.frag:3:3: error: 'a' : an array of 16777216 components; " + past},
+      {path("square.frag"), 1, "square.frag:3:12: error: 'a' : an array of 4294967296 components"},
+      {path("structs.frag"), 1, "structs.frag:4:7: error: 's' : an array of 69632 components"},
+      {path("global.frag"), 1, "global.frag:2:26: error: 'big' : an array of 24576 components"},
+      {path("small.frag"), 0, ""},
+      {path("unused.frag"), 0, ""},
+      {path("uncalled.frag"), 0, ""},
+  });
+  expect_case("render -o " + path("huge.png") + " --size 8x8", {path("huge.frag"), 1, "huge.frag:3:3: error: 'a'"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "huge.png"));
+}
+
 TEST_F(Pathological, ManyIncludesOfOneFile) {
   std::string includes;
   for (int i = 0; i < 100000; ++i) includes += "#include \"one.glsl\"\n";

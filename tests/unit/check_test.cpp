@@ -219,6 +219,51 @@ TEST(Check, CallToAFunctionWithNoBodyIsAnErrorAtItsFirstCall) {
   EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":3:10: error: 'helper' : function is called but no body defines it");
 }
 
+// Arrays are counted in all: four of 4,096 floats are the most a shader may
+// hold; one more float is refused at the largest array, at its first use.
+TEST(Check, TheShadersArraysMayHold16384ComponentsInAll) {
+  TempDir dir;
+  const auto scene = [&](int last) {
+    return "void mainImage(out vec4 c, in vec2 f) {\n"
+           "  float a[4096], b[4096], d[4096], e[" + std::to_string(last) + "];\n"
+           "  a[0] = b[0] = d[0] = e[0] = 1.0;\n"
+           "  c = vec4(a[int(f.x)], b[int(f.x)], d[int(f.x)], e[int(f.x)]);\n}\n";
+  };
+  write_file(dir / "scene.frag", scene(4096));
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(count_errors(diags), 0) << join(diags);
+  write_file(dir / "scene.frag", scene(4097));
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_EQ(count_errors(diags), 1) << join(diags);
+  EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() +
+                                ":3:24: error: 'e' : an array of 4097 components, and 16385 in all the shader's arrays; "
+                                "at most 16384 are allowed in a shader's arrays (the GL driver compiles code for each)");
+}
+
+// The driver inlines every call, so a function's array counts once a call
+// that main() reaches: four calls of 4,096 floats are allowed, five (one
+// direct, four through g's two calls) are not. A function nothing calls
+// costs nothing, whatever it holds.
+TEST(Check, AFunctionsArrayCountsOnceForEachCallThatMainReaches) {
+  TempDir dir;
+  const std::string functions = "float f(int i) {\n  float a[4096];\n  a[i] = 1.0;\n  return a[i / 2];\n}\n"
+                                "float g(int i) { return f(i) + f(i + 1); }\n"
+                                "float never(int i) { float b[16777216]; b[i] = 1.0; return b[i]; }\n";
+  write_file(dir / "scene.frag", functions + "void mainImage(out vec4 c, in vec2 p) {\n"
+                                             "  int i = int(p.x);\n  c = vec4(g(i) + g(i + 2));\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(count_errors(diags), 0) << join(diags);
+  write_file(dir / "scene.frag", functions + "void mainImage(out vec4 c, in vec2 p) {\n"
+                                             "  int i = int(p.x);\n  c = vec4(g(i) + g(i + 2) + f(i));\n}\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_EQ(count_errors(diags), 1) << join(diags);
+  EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() +
+                                ":3:3: error: 'a' : an array of 4096 components in each of 5 calls of f(); at most "
+                                "16384 are allowed in a shader's arrays (the GL driver compiles code for each)");
+}
+
 TEST(Check, PrototypeThatNothingCallsIsNoError) {
   TempDir dir;
   write_file(dir / "scene.frag", "float helper(vec2 p);\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
