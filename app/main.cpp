@@ -18,6 +18,7 @@
 #include "commands/import.h"
 #include "commands/render.h"
 #include "commands/window.h"
+#include "core/deep_stack.h"
 #include "core/diagnostics.h"
 #include "window/window_app.h"
 
@@ -47,9 +48,7 @@ std::string usage_error(const CLI::App& app, const CLI::ParseError& e) {
   return message;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"raymarching: a live shader playground for ray-marched SDF scenes.\n"
                "Opens SCENE (a .frag file) in a window and reloads it on every save.",
                "raymarching"};
@@ -89,4 +88,14 @@ int main(int argc, char** argv) {
     std::cerr << "raymarching: error: " << e.message << '\n';
     return rm::kExitUsage;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every command may build a program in the GL driver, whose compiler
+  // recurses on a shader's trees, on this thread: give it a deep stack.
+  int status = 0;
+  rm::run_with_deep_stack([&] { status = run(argc, argv); });
+  return status;
 }

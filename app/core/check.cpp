@@ -230,6 +230,8 @@ Diagnostics validate(const Source& source, std::string* active, const std::strin
   LogLine verdict(std::string_view(child.output).substr(0, newline));
   const int depth = verdict.number().value_or(0);
   const int deepest_line = verdict.take(" ") ? verdict.number().value_or(0) : 0;
+  const int chain = verdict.take(" ") ? verdict.number().value_or(0) : 0;
+  const int chain_line = verdict.take(" ") ? verdict.number().value_or(0) : 0;
   Diagnostics out = map_log(newline == std::string::npos ? "" : child.output.substr(newline + 1), source,
                             LogFormat::Glslang);
   // The GL driver recurses over the same tree on the thread that draws, and
@@ -238,6 +240,14 @@ Diagnostics validate(const Source& source, std::string* active, const std::strin
     out.push_back(locate(source, Severity::Error, deepest_line, 0,
                          "an expression nested " + std::to_string(depth) + " levels deep; at most " +
                              std::to_string(kMaxTreeDepth) + " are allowed (the GL driver's compiler recurses on each)"));
+  // The driver builds such a tree itself from single-use variables and
+  // inlined calls.
+  else if (chain > kMaxChainDepth)
+    out.push_back(locate(source, Severity::Error, chain_line, 0,
+                         "a value computed " + std::to_string(chain) +
+                             " operations deep, through variables and calls; at most " + std::to_string(kMaxChainDepth) +
+                             " are allowed (the GL driver inlines the calls, puts each expression in place of "
+                             "its variable, and recurses on the tree)"));
   return out;
 }
 

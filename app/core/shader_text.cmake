@@ -31,6 +31,7 @@ set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/glslang_work.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/sandbox.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/deep_stack.cpp
 )
 # Where the host finds the worker: <prefix>/libexec/raymarching installed,
 # else where this build put it. Whatever builds glslang_client.cpp takes

@@ -4,39 +4,20 @@
 #include <glslang/MachineIndependent/localintermediate.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
-#include <pthread.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <utility>
 #include <set>
 
+#include "core/deep_stack.h"
 #include "glslang_worker/sandbox.h"
 
 namespace rm {
 
 namespace {
-
-// Runs `work` on a thread with a stack of `bytes`, and waits for it. Only the
-// pages the work touches are ever backed by memory.
-void run_with_stack(size_t bytes, const std::function<void()>& work) {
-  pthread_attr_t attr;
-  pthread_attr_init(&attr);
-  pthread_t thread;
-  auto call = [](void* w) -> void* {
-    (*static_cast<const std::function<void()>*>(w))();
-    return nullptr;
-  };
-  const bool started = pthread_attr_setstacksize(&attr, bytes) == 0 &&
-                       pthread_create(&thread, &attr, call, const_cast<std::function<void()>*>(&work)) == 0;
-  pthread_attr_destroy(&attr);
-  if (!started) {
-    work();  // no such stack to be had: run here, with the stack there is
-    return;
-  }
-  pthread_join(thread, nullptr);
-}
 
 // The deepest nesting of the program's tree (one level per operator in a
 // chain like x+x+x, per call, per parenthesis) and the final source line
@@ -202,6 +183,164 @@ class LargeArrays : public glslang::TIntermTraverser {
   std::map<long long, Array> arrays_;
 };
 
+// How deep the GL driver's expression trees may grow once it inlines every
+// call and puts the expression of each variable set once and read once in
+// place of its read (Mesa's tree grafting): a chain of 10,000 such
+// variables (`float x1 = x0 * 1.0001 + 0.1; ...`), or 10,000 calls
+// `x = f(x);`, crashed llvmpipe's compile on an 8 MiB stack, and on a larger
+// one took it 27 s and 12 s (5,000 calls: 2.7 s; 2,500 variables, a chain
+// of 5,000 here: 1.6 s). Counted as an upper bound:
+// a read of a variable counts the depth of its value, whatever its uses; a
+// loop's body counts once; a call adds what its function's body adds.
+class ChainDepth {
+ public:
+  explicit ChainDepth(TIntermNode* root) {
+    auto* program = root->getAsAggregate();
+    if (!program) return;
+    for (TIntermNode* item : program->getSequence()) {
+      auto* function = item->getAsAggregate();
+      if (function && function->getOp() == glslang::EOpFunction) functions_[function->getName().c_str()] = function;
+      else value(item);  // a global's initialiser
+    }
+    added_by("main(");
+  }
+  int deepest = 0;  // operations, through variables and calls
+  int line = 0;     // the final source line where a chain first passes kMaxChainDepth, else of the deepest
+
+ private:
+  int note(TIntermNode* node, int depth) { return note(node->getLoc().line, depth); }
+  int note(int at, int depth) {
+    if (at <= 0) return depth;  // the tree's own nodes, with no line
+    if (depth > deepest && deepest <= kMaxChainDepth) line = at;
+    deepest = std::max(deepest, depth);
+    if (depth > here_.depth) here_ = {depth, at};
+    return depth;
+  }
+  // The variable an assignment writes (through indices, fields, swizzles).
+  static glslang::TIntermSymbol* written(TIntermNode* node) {
+    while (node && !node->getAsSymbolNode()) {
+      auto* binary = node->getAsBinaryNode();
+      node = binary ? binary->getLeft() : nullptr;
+    }
+    return node ? node->getAsSymbolNode() : nullptr;
+  }
+  void set(TIntermNode* target, int depth, bool whole) {
+    if (auto* symbol = written(target)) {
+      int& held = values_[symbol->getId()];
+      held = whole ? depth : std::max(held, depth);
+    }
+  }
+
+  int value(TIntermNode* node) {
+    using namespace glslang;
+    if (!node || node->getAsConstantUnion()) return 0;
+    if (auto* symbol = node->getAsSymbolNode()) {
+      auto at = values_.find(symbol->getId());
+      return at == values_.end() ? 0 : at->second;
+    }
+    if (auto* binary = node->getAsBinaryNode()) {
+      const TOperator op = binary->getOp();
+      const int right = value(binary->getRight());
+      if (op >= EOpAssign && op <= EOpRightShiftAssign) {
+        const bool whole = op == EOpAssign && binary->getLeft()->getAsSymbolNode();
+        const int depth = op == EOpAssign ? right : 1 + std::max(right, value(binary->getLeft()));
+        set(binary->getLeft(), note(node, depth), whole);
+        return depth;
+      }
+      return note(node, 1 + std::max(value(binary->getLeft()), right));
+    }
+    if (auto* unary = node->getAsUnaryNode()) {
+      const int depth = note(node, 1 + value(unary->getOperand()));
+      const TOperator op = unary->getOp();
+      if (op == EOpPostIncrement || op == EOpPostDecrement || op == EOpPreIncrement || op == EOpPreDecrement)
+        set(unary->getOperand(), depth, true);
+      return depth;
+    }
+    if (auto* selection = node->getAsSelectionNode()) {
+      const int condition = value(selection->getCondition());
+      const auto before = values_;
+      const int yes = value(selection->getTrueBlock());
+      auto after_yes = std::move(values_);
+      values_ = before;
+      const int no = value(selection->getFalseBlock());
+      for (const auto& [id, depth] : after_yes) values_[id] = std::max(values_[id], depth);
+      return note(node, 1 + std::max({condition, yes, no}));
+    }
+    if (auto* loop = node->getAsLoopNode()) {
+      value(loop->getTest());
+      value(loop->getBody());
+      value(loop->getTerminal());
+      return 0;
+    }
+    if (auto* branch = node->getAsBranchNode()) {
+      const int depth = value(branch->getExpression());
+      returned_ = std::max(returned_, depth);
+      return depth;
+    }
+    if (auto* choice = node->getAsSwitchNode()) {
+      value(choice->getCondition());
+      value(choice->getBody());
+      return 0;
+    }
+    auto* aggregate = node->getAsAggregate();
+    if (!aggregate) return 0;
+    const TOperator op = aggregate->getOp();
+    if (op == EOpLinkerObjects || op == EOpParameters || op == EOpFunction) return 0;
+    int last = 0, most = 0;
+    for (TIntermNode* child : aggregate->getSequence()) most = std::max(most, last = value(child));
+    if (op == EOpSequence || op == EOpComma || op == EOpNull) return last;
+    if (op == EOpFunctionCall && aggregate->isUserDefined()) {
+      // Named where most of the depth comes from: the arguments, or the
+      // function's body (the host's main() calls mainImage).
+      const Deepest body = added_by(aggregate->getName().c_str());
+      const int depth = note(body.depth > most ? body.line : node->getLoc().line,
+                             static_cast<int>(std::min<long long>(kDeepEnough, 1LL + most + body.depth)));
+      const TQualifierList& qualifiers = aggregate->getQualifierList();
+      for (size_t i = 0; i < qualifiers.size() && i < aggregate->getSequence().size(); ++i)
+        if (qualifiers[i] == EvqOut || qualifiers[i] == EvqInOut) set(aggregate->getSequence()[i], depth, true);
+      return depth;
+    }
+    return note(node, 1 + most);  // a constructor or a built-in function
+  }
+
+  struct Deepest {
+    int depth = 0;
+    int line = 0;
+  };
+  static constexpr int kDeepEnough = 1 << 30;  // calls nested ten times twelve deep would pass an int
+
+  // The depth a call of `function` adds to its arguments': what its body
+  // returns or writes to its parameters, from parameters at 0; and the line
+  // of its body's deepest value.
+  Deepest added_by(const std::string& function) {
+    auto [at, added] = added_.emplace(function, Deepest{});
+    if (!added) return at->second;  // known, or a cycle (an error of its own) under way
+    auto body = functions_.find(function);
+    if (body == functions_.end()) return {};
+    auto values = std::exchange(values_, {});
+    const int returned = std::exchange(returned_, 0);
+    const Deepest here = std::exchange(here_, {});
+    for (TIntermNode* part : body->second->getSequence()) value(part);
+    Deepest result{returned_, here_.line};
+    for (TIntermNode* part : body->second->getSequence()) {
+      auto* parameters = part->getAsAggregate();
+      if (!parameters || parameters->getOp() != glslang::EOpParameters) continue;
+      for (TIntermNode* parameter : parameters->getSequence())  // what an out parameter holds at the end
+        if (auto* symbol = parameter->getAsSymbolNode()) result.depth = std::max(result.depth, values_[symbol->getId()]);
+    }
+    values_ = std::move(values);
+    returned_ = returned;
+    here_ = here;
+    return added_[function] = result;
+  }
+
+  std::map<std::string, glslang::TIntermAggregate*> functions_;  // by mangled name, "f(vf3;"
+  std::map<std::string, Deepest> added_;
+  Deepest here_;  // the deepest value of the function being walked
+  std::map<long long, int> values_;  // a variable's depth now, by symbol id
+  int returned_ = 0;                 // the deepest value the function walked returns
+};
+
 // glslang's preprocessor over `text` in `shader`, or nullopt if it fails
 // (its log says why). Call on a big stack.
 std::optional<std::string> preprocessed(const std::string& text, glslang::TShader* shader) {
@@ -215,13 +354,14 @@ std::optional<std::string> preprocessed(const std::string& text, glslang::TShade
   return expanded;
 }
 
-// The verdict line ("DEPTH LINE"), then glslang's log; with `active_text`,
+// The verdict line ("DEPTH LINE CHAIN LINE": the tree's deepest nesting and
+// ChainDepth's deepest chain, each with its line), then glslang's log; with `active_text`,
 // then a NUL and its preprocessed text (a NUL never comes out of the log).
 std::string parse_in_child(const std::string& source_text, const std::string* active_text) {
   std::string verdict;
   // glslang's traversals recurse once per level of the tree, and a 30,000-term
   // sum (60 KB of text) overflows an 8 MiB stack.
-  run_with_stack(kValidationStack, [&] {
+  run_with_deep_stack([&] {
     glslang::TShader shader(EShLangFragment);
     const char* text = source_text.c_str();
     const int length = static_cast<int>(source_text.size());
@@ -232,18 +372,21 @@ std::string parse_in_child(const std::string& source_text, const std::string* ac
     DeepestNode deepest;
     CallsWithoutBody calls;
     LargeArrays arrays;
+    int chain = 0, chain_line = 0;
     if (tree && tree->getTreeRoot()) {
       tree->getTreeRoot()->traverse(&deepest);
       tree->getTreeRoot()->traverse(&calls);
       tree->getTreeRoot()->traverse(&arrays);
+      const ChainDepth chains(tree->getTreeRoot());
+      chain = chains.deepest, chain_line = chains.line;
     }
-    verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + "\n" + shader.getInfoLog() +
-              calls.log() + arrays.log();
+    verdict = std::to_string(deepest.getMaxDepth()) + " " + std::to_string(deepest.line) + " " + std::to_string(chain) +
+              " " + std::to_string(chain_line) + "\n" + shader.getInfoLog() + calls.log() + arrays.log();
     if (active_text) {
       glslang::TShader active(EShLangFragment);
       verdict += '\0' + preprocessed(*active_text, &active).value_or("");
     }
-  });
+  }, kValidationStack);
   return verdict;
 }
 
@@ -277,11 +420,11 @@ std::optional<GlslangReply> serve(const GlslangRequest& request, int requester) 
     child = run_sandboxed(
         [&] {
           std::string out;
-          run_with_stack(kValidationStack, [&] {
+          run_with_deep_stack([&] {
             glslang::TShader shader(EShLangFragment);
             if (auto expanded = preprocessed(request.text, &shader)) out = "+" + *expanded;
             else out = "-" + std::string(shader.getInfoLog());
-          });
+          }, kValidationStack);
           return out;
         },
         limits);

@@ -16,6 +16,10 @@ namespace rm {
 constexpr double kValidationSeconds = 5.0;
 constexpr std::uintmax_t kValidationBytes = std::uintmax_t{512} << 20;
 constexpr size_t kValidationStack = size_t{256} << 20;
+// The deepest chain of operations through variables and calls that
+// validation lets through (glslang_worker/glslang_work.cpp, ChainDepth): the
+// GL driver builds trees that deep. The examples reach 100 to 600.
+constexpr int kMaxChainDepth = 5000;
 
 struct GlslangRequest {
   enum class Kind { Validate, Preprocess };
@@ -33,9 +37,10 @@ struct GlslangReply {
   enum class Status { Ok, TimedOut, OutOfMemory, Crashed, NoWorker };  // NoWorker last: read_reply checks
   Status status = Status::Ok;
   int signal = 0;  // the signal that ended the work (Crashed)
-  // Ok: the work's result. Validate: "DEPTH LINE\n" (the tree's deepest
-  // level and its final source line, 0 0 when it did not parse), glslang's
-  // log, then with active_text a NUL and that text preprocessed.
+  // Ok: the work's result. Validate: "DEPTH LINE CHAIN LINE\n" (the tree's
+  // deepest level and the deepest chain of values through variables and
+  // calls, each with its final source line; 0 0 0 0 when it did not parse),
+  // glslang's log, then with active_text a NUL and that text preprocessed.
   // Preprocess: "+" and the text, or "-" and glslang's log.
   // NoWorker: why the worker could not answer.
   std::string output;

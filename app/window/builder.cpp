@@ -21,7 +21,7 @@ Builder::~Builder() {
 void Builder::start(std::function<ReloadStatus()> build) {
   done_ = false;
   cancel_ = false;
-  thread_ = std::thread([this, build = std::move(build)] {
+  thread_ = DeepStackThread([this, build = std::move(build)] {
     glfwMakeContextCurrent(context_);
     status_ = build();
     // Shared objects are complete for another context once this one has

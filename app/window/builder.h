@@ -7,8 +7,8 @@
 #include <atomic>
 #include <functional>
 #include <optional>
-#include <thread>
 
+#include "core/deep_stack.h"
 #include "core/scene.h"
 
 struct GLFWwindow;
@@ -36,7 +36,7 @@ class Builder {
 
  private:
   GLFWwindow* context_ = nullptr;
-  std::thread thread_;
+  DeepStackThread thread_;  // the driver's compiler recurses on deep shaders
   std::atomic<bool> done_{false}, cancel_{false};
   ReloadStatus status_ = ReloadStatus::Unchanged;
 };

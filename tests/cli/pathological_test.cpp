@@ -258,6 +258,46 @@ TEST_F(Pathological, ArraysPastWhatTheDriverCanCompile) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "huge.png"));
 }
 
+// Chains the GL driver turns into deep trees: it inlines every call and puts
+// the expression of a variable set once and read once in place of its read.
+// On an 8 MiB stack llvmpipe crashed (SIGSEGV) on 7,000 such variables
+// (`float x1 = x0 * 1.0001 + 0.1;` ...), on 10,000 calls `x = f(x);`, and on
+// 818 bytes that nest calls ten times five deep (100,000 inlined calls);
+// validation refuses chains past 5000 operations, where they pass it.
+TEST_F(Pathological, ChainsThatTheDriverBuildsIntoDeepTrees) {
+  const auto variables = [](int n) {
+    std::string text = "void mainImage(out vec4 c, in vec2 f) {\n  float x0 = f.x;\n";
+    for (int i = 1; i < n; ++i)
+      text += "  float x" + std::to_string(i) + " = x" + std::to_string(i - 1) + " * 1.0001 + 0.1;\n";
+    return text + "  c = vec4(x" + std::to_string(n - 1) + ");\n}\n";
+  };
+  write_file(dir_ / "variables.frag", variables(7000));
+  write_file(dir_ / "fewer.frag", variables(1000));
+  std::string calls = "float f(float x) { return x * 1.0001 + 0.1; }\nvoid mainImage(out vec4 c, in vec2 p) {\n"
+                      "  float x = p.x;\n";
+  for (int i = 0; i < 10000; ++i) calls += "  x = f(x);\n";
+  write_file(dir_ / "calls.frag", calls + "  c = vec4(x);\n}\n");
+  std::string nested = "float f0(float x) { return x * 1.0001 + 0.1; }\n";
+  for (int level = 1; level <= 5; ++level) {
+    nested += "float f" + std::to_string(level) + "(float x) {";
+    for (int i = 0; i < 10; ++i) nested += " x = f" + std::to_string(level - 1) + "(x);";
+    nested += " return x; }\n";
+  }
+  write_file(dir_ / "nested.frag", nested + "void mainImage(out vec4 c, in vec2 p) { c = vec4(f5(p.x)); }\n");
+  const std::string past = "; at most 5000 are allowed (the GL driver inlines the calls, puts each expression in place "
+                           "of its variable, and recurses on the tree)";
+  run_table({
+      {path("variables.frag"), 1, "variables.frag:2502: error: a value computed 14004 operations deep, through "
+                                  "variables and calls" + past},
+      {path("calls.frag"), 1, "calls.frag:1670: error: a value computed 30006 operations deep"},
+      {path("nested.frag"), 1, "nested.frag:5: error: a value computed 311117 operations deep"},
+      {path("fewer.frag"), 0, ""},
+  });
+  for (const char* name : {"variables.frag", "nested.frag"})
+    expect_case("render -o " + path("chain.png") + " --size 8x8", {path(name), 1, "operations deep"});
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "chain.png"));
+}
+
 TEST_F(Pathological, ManyIncludesOfOneFile) {
   std::string includes;
   for (int i = 0; i < 100000; ++i) includes += "#include \"one.glsl\"\n";

@@ -35,6 +35,23 @@ MOVING = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 """
 
 
+def children(pid):
+    """The children of process `pid`, those of all its threads: the render
+    runs on a thread of its own, with a deep stack."""
+    found = []
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        try:
+            found += (task / "children").read_text().split()
+        except FileNotFoundError:  # a thread that ended
+            pass
+    return found
+
+
+def ffmpeg_child(pid):
+    """The pid of the ffmpeg that process `pid` started, or None."""
+    return next((int(c) for c in children(pid) if Path(f"/proc/{c}/comm").read_text().strip() == "ffmpeg"), None)
+
+
 def render(*args, env=None, check=True):
     result = subprocess.run([BINARY, "render", *map(str, args)], capture_output=True, text=True, env=env)
     if check and result.returncode != 0:
@@ -156,8 +173,7 @@ class Video(unittest.TestCase):
                                 "--frames", "5000", "--size", "320x180"], stderr=subprocess.PIPE, text=True)
         ffmpeg = None
         for _ in range(200):  # its ffmpeg starts once the scene is built
-            children = Path(f"/proc/{run.pid}/task/{run.pid}/children").read_text().split()
-            ffmpeg = next((int(c) for c in children if Path(f"/proc/{c}/comm").read_text().strip() == "ffmpeg"), None)
+            ffmpeg = ffmpeg_child(run.pid)
             if ffmpeg:
                 break
             time.sleep(0.05)
@@ -188,8 +204,7 @@ class Video(unittest.TestCase):
         run = subprocess.Popen([BINARY, "render", str(ROOT / "examples" / "default.frag"), "-o", str(out),
                                 "--frames", "5000", "--size", "320x180"], stderr=subprocess.PIPE, text=True)
         for _ in range(200):  # its ffmpeg starts once the scene is built
-            children = Path(f"/proc/{run.pid}/task/{run.pid}/children").read_text().split()
-            if any(Path(f"/proc/{c}/comm").read_text().strip() == "ffmpeg" for c in children):
+            if ffmpeg_child(run.pid):
                 break
             time.sleep(0.05)
         time.sleep(1.0)  # frames are on their way

@@ -1,0 +1,45 @@
+#include "core/deep_stack.h"
+
+#include <system_error>
+#include <utility>
+
+namespace rm {
+
+DeepStackThread::DeepStackThread(std::function<void()> work, size_t bytes)
+    : work_(std::make_unique<std::function<void()>>(std::move(work))) {
+  auto call = [](void* w) -> void* {
+    (*static_cast<std::function<void()>*>(w))();
+    return nullptr;
+  };
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  int error = pthread_attr_setstacksize(&attr, bytes);
+  if (error == 0) error = pthread_create(&thread_, &attr, call, work_.get());
+  pthread_attr_destroy(&attr);
+  if (error != 0) error = pthread_create(&thread_, nullptr, call, work_.get());  // the default stack, then
+  if (error != 0) throw std::system_error(error, std::generic_category(), "a thread could not be started");
+  running_ = true;
+}
+
+DeepStackThread& DeepStackThread::operator=(DeepStackThread&& other) noexcept {
+  thread_ = other.thread_;
+  running_ = std::exchange(other.running_, false);
+  work_ = std::move(other.work_);
+  return *this;
+}
+
+DeepStackThread::~DeepStackThread() {
+  if (running_) join();
+}
+
+void DeepStackThread::join() {
+  pthread_join(thread_, nullptr);
+  running_ = false;
+}
+
+void run_with_deep_stack(const std::function<void()>& work, size_t bytes) {
+  DeepStackThread thread(work, bytes);
+  thread.join();
+}
+
+}  // namespace rm
