@@ -29,6 +29,7 @@ set(RM_SHADER_TEXT_SOURCES
 set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/main.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/glslang_work.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/tree_checks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/sandbox.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
   ${CMAKE_CURRENT_LIST_DIR}/deep_stack.cpp

@@ -17,7 +17,7 @@ constexpr double kValidationSeconds = 5.0;
 constexpr std::uintmax_t kValidationBytes = std::uintmax_t{512} << 20;
 constexpr size_t kValidationStack = size_t{256} << 20;
 // The deepest chain of operations through variables and calls that
-// validation lets through (glslang_worker/glslang_work.cpp, ChainDepth): the
+// validation lets through (glslang_worker/tree_checks.cpp, ChainDepth): the
 // GL driver builds trees that deep. The examples reach 100 to 600.
 constexpr int kMaxChainDepth = 5000;
 
