@@ -17,7 +17,9 @@ namespace rm {
 constexpr int kMaxTreeDepth = 2000;
 
 // Runs glslang's parser and semantic checks on source.text (fragment stage)
-// within the validation limits, and refuses a tree deeper than kMaxTreeDepth.
+// within the validation limits, and refuses a tree deeper than kMaxTreeDepth
+// and a chain through variables and calls deeper than kMaxChainDepth
+// (glslang_worker/protocol.h: the worker finds where it passes the limit).
 // With `active`, the same request also runs glslang's preprocessor over
 // source.text followed by `appended`, and leaves the result there, line for
 // line (what active_code() gives; empty if the preprocessor fails): the

@@ -15,6 +15,14 @@ namespace rm {
 
 namespace {
 
+// The entry point's mangled name: every call the driver inlines starts there.
+constexpr const char* kEntryPoint = "main(";
+
+// A line of glslang's log, as the host maps it to the user's file and line.
+std::string error_line(int line, const std::string& name, const std::string& message) {
+  return "ERROR: 0:" + std::to_string(line) + ": '" + name + "' : " + message + "\n";
+}
+
 // The deepest nesting of the program's tree (one level per operator in a
 // chain like x+x+x, per call, per parenthesis) and the final source line
 // where it is reached.
@@ -60,7 +68,7 @@ class CallsWithoutBody : public glslang::TIntermTraverser {
     std::sort(missing.begin(), missing.end());
     std::string out;
     for (const auto& [line, name] : missing)
-      out += "ERROR: 0:" + std::to_string(line) + ": '" + name + "' : function is called but no body defines it\n";
+      out += error_line(line, name, "function is called but no body defines it");
     return out;
   }
 
@@ -146,11 +154,12 @@ class LargeArrays : public glslang::TIntermTraverser {
       return std::string(text);
     };
     const std::string function = largest->function.substr(0, largest->function.find('(') + 1) + ")";
-    return "ERROR: 0:" + std::to_string(largest->line) + ": '" + largest->name + "' : an array of " +
-           whole(largest->scalars) + " components" +
-           (largest_calls > 1 ? " in each of " + whole(largest_calls) + " calls of " + function : "") +
-           (total > largest_scalars ? ", and " + whole(total) + " in all the shader's arrays" : "") + "; at most " +
-           whole(kMaxArrayScalars) + " are allowed in a shader's arrays (the GL driver compiles code for each)\n";
+    return error_line(largest->line, largest->name,
+                      "an array of " + whole(largest->scalars) + " components" +
+                          (largest_calls > 1 ? " in each of " + whole(largest_calls) + " calls of " + function : "") +
+                          (total > largest_scalars ? ", and " + whole(total) + " in all the shader's arrays" : "") +
+                          "; at most " + whole(kMaxArrayScalars) +
+                          " are allowed in a shader's arrays (the GL driver compiles code for each)");
   }
 
  private:
@@ -164,7 +173,7 @@ class LargeArrays : public glslang::TIntermTraverser {
   // How many copies of `function` the driver's inlining makes: one for
   // main(), and for any other, the sum over its calls of their caller's.
   double times_inlined(const std::string& function) {
-    if (function == "main(") return 1;
+    if (function == kEntryPoint) return 1;
     auto [at, added] = inlined_.emplace(function, 0.0);
     if (!added) return at->second;  // known, or a cycle (an error of its own) under way
     double n = 0;
@@ -197,7 +206,7 @@ class ChainDepth {
       if (function && function->getOp() == glslang::EOpFunction) functions_[function->getName().c_str()] = function;
       else value(item);  // a global's initialiser
     }
-    added_by("main(");
+    added_by(kEntryPoint);
   }
   int deepest = 0;  // operations, through variables and calls
   int line = 0;     // the final source line where a chain first passes kMaxChainDepth, else of the deepest
