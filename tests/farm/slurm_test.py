@@ -84,12 +84,19 @@ PartitionName=render Nodes={host} Default=YES MaxTime=INFINITE State=UP
         self.env = dict(os.environ, SLURM_CONF=str(self.conf), RAYMARCHING=BINARY)
         subprocess.run(["slurmctld", "-f", str(self.conf)], check=True, env=self.env)
         subprocess.run(["slurmd", "-f", str(self.conf)], check=True, env=self.env)
-        for _ in range(300):
+        # The daemons start in seconds, but once, beside the window's tests on
+        # 2 busy cores, slurmctld had not answered in 30 s.
+        for _ in range(1200):
             state = subprocess.run(["sinfo", "-h", "-o", "%T"], capture_output=True, text=True, env=self.env).stdout
             if state.strip() == "idle":
                 return
             time.sleep(0.1)
-        raise RuntimeError(f"the node never became idle: {state!r}; see {root}/slurmctld.log and slurmd.log")
+        # Said here, with the logs, and stopped: the temporary directory goes
+        # with the failed class, and daemons left running would outlive it.
+        logs = "".join(f"\n--- {name}:\n" + "".join((root / name).read_text(errors="replace").splitlines(True)[-10:])
+                       for name in ("slurmctld.log", "slurmd.log") if (root / name).exists())
+        self.stop()
+        raise RuntimeError(f"the node never became idle in 120 s: {state!r}{logs}")
 
     def stop(self):
         """SIGTERM to each daemon, and SIGKILL to one still there after 10 s."""
