@@ -9,8 +9,10 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <new>
 #include <regex>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "commands/accuracy.h"
@@ -86,6 +88,14 @@ int run(int argc, char** argv) {
     return window.run();
   } catch (const rm::cli::UsageError& e) {
     std::cerr << "raymarching: error: " << e.message << '\n';
+    return rm::kExitUsage;
+  } catch (const std::bad_alloc&) {  // what the system refuses ends in one line, as a bad path does
+    std::cerr << "raymarching: error: out of memory\n";
+    return rm::kExitUsage;
+  } catch (const std::system_error& e) {  // a thread that cannot start says only strerror
+    const bool thread = e.code() == std::errc::resource_unavailable_try_again;
+    std::cerr << "raymarching: error: " << (thread ? "a thread could not be started: " : "") << e.what()
+              << (thread ? " (out of memory or of threads)" : "") << '\n';
     return rm::kExitUsage;
   }
 }

@@ -1,5 +1,6 @@
 #include "core/deep_stack.h"
 
+#include <optional>
 #include <system_error>
 #include <utility>
 
@@ -17,7 +18,7 @@ DeepStackThread::DeepStackThread(std::function<void()> work, size_t bytes)
   if (error == 0) error = pthread_create(&thread_, &attr, call, work_.get());
   pthread_attr_destroy(&attr);
   if (error != 0) error = pthread_create(&thread_, nullptr, call, work_.get());  // the default stack, then
-  if (error != 0) throw std::system_error(error, std::generic_category(), "a thread could not be started");
+  if (error != 0) throw std::system_error(error, std::generic_category());  // as std::thread's
   running_ = true;
 }
 
@@ -38,8 +39,14 @@ void DeepStackThread::join() {
 }
 
 void run_with_deep_stack(const std::function<void()>& work, size_t bytes) {
-  DeepStackThread thread(work, bytes);
-  thread.join();
+  std::optional<DeepStackThread> thread;
+  try {
+    thread.emplace(work, bytes);
+  } catch (const std::system_error&) {
+    work();  // no thread to be had at all: the caller's stack, rather than nothing
+    return;
+  }
+  thread->join();
 }
 
 }  // namespace rm

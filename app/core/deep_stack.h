@@ -36,7 +36,8 @@ class DeepStackThread {
   std::unique_ptr<std::function<void()>> work_;  // where the thread finds it, whatever moves
 };
 
-// Runs `work` on a thread with a stack of `bytes`, and waits for it.
+// Runs `work` on a thread with a stack of `bytes`, and waits for it; on this
+// thread where no thread can be started.
 void run_with_deep_stack(const std::function<void()>& work, size_t bytes = kDeepStack);
 
 }  // namespace rm

@@ -394,6 +394,27 @@ TEST_F(Pathological, APictureLargerThanTheMemoryIsOneLine) {
   EXPECT_EQ(std::count(channel.err.begin(), channel.err.end(), '\n'), 1) << channel.err;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "small.png"));
 }
+
+// With no thread to be had (out of memory for stacks, or past a limit of
+// threads), a command that needs none runs on the caller's stack, and one
+// that needs one ends in one line and status 2. Both used to abort (134) on
+// an uncaught std::system_error. ASan's runtime must be loaded first, so a
+// sanitized build does not preload the library that refuses threads.
+TEST_F(Pathological, NoThreadToBeHadIsOneLine) {
+  write_file(dir_ / "white.frag", kMain);
+  const std::string preload = std::string("LD_PRELOAD=") + RM_NO_THREADS + " ";
+  const test::Outcome check = test::run_binary("check " + path("white.frag"), preload);
+  EXPECT_EQ(check.status, 0) << check.err;
+  EXPECT_EQ(check.err, "");
+
+  // render's guard of --timeout and signals is a thread of its own.
+  const test::Outcome render =
+      test::run_binary("render " + path("white.frag") + " -o " + path("out.png") + " --size 16x9", preload);
+  EXPECT_EQ(render.status, 2) << render.err;
+  EXPECT_EQ(render.err, "raymarching: error: a thread could not be started: Resource temporarily unavailable (out "
+                        "of memory or of threads)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+}
 #endif
 
 TEST_F(Pathological, SizeLimits) {
