@@ -1,8 +1,11 @@
 #include "core/channels.h"
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <sstream>
 
 #include "core/cube_map.h"
 #include "core/files.h"
@@ -12,6 +15,48 @@ namespace rm {
 
 namespace {
 
+// OIIO's message of a failed read is several lines (libpng's words, then its
+// own: "Read error: hit end of file\nPNG read error: IDAT: Read error: hit
+// end of file\nPNG library error"): one line of those that say something the
+// others do not.
+std::string one_line(const std::string& message) {
+  std::vector<std::string> lines;
+  std::istringstream in(message);
+  for (std::string line; std::getline(in, line);)
+    if (line.find_first_not_of(" \t") != std::string::npos) lines.push_back(line);
+  std::string joined;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    bool said_elsewhere = false;  // by another line, or by an earlier copy of this one
+    for (size_t j = 0; j < lines.size() && !said_elsewhere; ++j)
+      said_elsewhere = j != i && (lines[j] == lines[i] ? j < i : lines[j].find(lines[i]) != std::string::npos);
+    if (!said_elsewhere) joined += (joined.empty() ? "" : "; ") + lines[i];
+  }
+  return joined;
+}
+
+// libpng prints its errors to stderr besides handing them to OIIO (whose
+// handler returns, so libpng's own runs after it): the message reaches the
+// user through OIIO, in one line, so stderr is shut while OIIO reads.
+// (Another thread's line written in that time is lost with it.)
+class StderrShut {
+ public:
+  StderrShut() : saved_(dup(STDERR_FILENO)) {
+    const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+    if (null >= 0) close(null);
+  }
+  ~StderrShut() {
+    if (saved_ < 0) return;
+    dup2(saved_, STDERR_FILENO);
+    close(saved_);
+  }
+  StderrShut(const StderrShut&) = delete;
+  StderrShut& operator=(const StderrShut&) = delete;
+
+ private:
+  int saved_;
+};
+
 // Opens `path` and checks its header: no pixel is read yet.
 std::unique_ptr<OIIO::ImageInput> open_checked(const std::filesystem::path& path, std::string* error) {
   // OIIO's own words for these ("could not find a format reader") hide the cause.
@@ -19,9 +64,13 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::filesystem::path& path
     *error = *why;
     return nullptr;
   }
-  auto in = OIIO::ImageInput::open(path.string());
+  std::unique_ptr<OIIO::ImageInput> in;
+  {
+    const StderrShut quiet;
+    in = OIIO::ImageInput::open(path.string());
+  }
   if (!in) {
-    std::string why = OIIO::geterror();
+    std::string why = one_line(OIIO::geterror());
     *error = why.empty() ? "cannot open image" : why;
     return nullptr;
   }
@@ -61,8 +110,13 @@ std::optional<Image> decode_channel_image(const std::filesystem::path& path, std
   image.height = spec.height;
   const int channels = spec.nchannels;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-    *error = in->geterror();
+  bool read = false;
+  {
+    const StderrShut quiet;
+    read = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data());
+  }
+  if (!read) {
+    *error = one_line(in->geterror());
     return std::nullopt;
   }
   // Expand grey, grey+alpha and RGB to RGBA.

@@ -549,6 +549,17 @@ TEST_F(Cli, BadShaderFilesGetOneClearLine) {
   while (big.size() < 6u * 1024 * 1024) big += "// padding padding padding padding padding padding padding padding\n";
   write_file(dir_ / "big.frag", big);
   write_file(dir_ / "corrupt.png", "this is not a PNG");
+  // A PNG with its pixels cut off, a JPEG within its header: libpng printed
+  // a line of its own, and OIIO's message was three lines (JPEG's two).
+  for (const std::string& name : {"cut.png", "cut.jpg"}) {
+    std::vector<unsigned char> noise(64 * 64 * 3);
+    for (size_t i = 0; i < noise.size(); ++i) noise[i] = static_cast<unsigned char>((i * 2654435761u) >> 13);
+    auto image = OIIO::ImageOutput::create(name);
+    ASSERT_TRUE(image && image->open((dir_ / name).string(), OIIO::ImageSpec(64, 64, 3, OIIO::TypeDesc::UINT8)));
+    image->write_image(OIIO::TypeDesc::UINT8, noise.data());
+    image->close();
+    std::filesystem::resize_file(dir_ / name, name == "cut.png" ? std::filesystem::file_size(dir_ / name) / 2 : 200);
+  }
   const std::string out = " -o " + (dir_ / "o.png").string();
   struct Case {
     std::string args;
@@ -562,6 +573,9 @@ TEST_F(Cli, BadShaderFilesGetOneClearLine) {
       {"check " + (dir_ / "include_dir.frag").string(), 1, "include_dir.frag:1:"},
       {"check " + (dir_ / "cycle.frag").string(), 1, "#include cycle"},
       {"render " + good() + out + " --channel0 " + (dir_ / "corrupt.png").string(), 2, "corrupt.png"},
+      {"render " + good() + out + " --channel0 " + (dir_ / "cut.png").string(), 2,
+       "cut.png': PNG read error: IDAT: Read error: hit end of file; PNG library error"},
+      {"render " + good() + out + " --channel0 " + (dir_ / "cut.jpg").string(), 2, "cut.jpg': JPEG error: Premature end of JPEG file"},
   };
   for (const Case& c : cases) {
     const test::Outcome r = run(c.args);
