@@ -284,6 +284,14 @@ TEST_F(Pathological, ChainsThatTheDriverBuildsIntoDeepTrees) {
     nested += " return x; }\n";
   }
   write_file(dir_ / "nested.frag", nested + "void mainImage(out vec4 c, in vec2 p) { c = vec4(f5(p.x)); }\n");
+  // 10,000 variables, each with an if: shallow, but validation copied every
+  // variable's depth at each if, and took glslang's worker past its 5 s.
+  std::string ifs = "uniform float u;\nvoid mainImage(out vec4 c, in vec2 f) {\n";
+  for (int i = 0; i < 10000; ++i) {
+    const std::string x = "x" + std::to_string(i);
+    ifs += "  float " + x + " = u * " + std::to_string(i) + ".0; if (" + x + " > 3.0) " + x + " -= 1.0;\n";
+  }
+  write_file(dir_ / "ifs.frag", ifs + "  c = vec4(x0 + x9999);\n}\n");
   const std::string past = "; at most 5000 are allowed (the GL driver inlines the calls, puts each expression in place "
                            "of its variable, and recurses on the tree)";
   run_table({
@@ -292,6 +300,7 @@ TEST_F(Pathological, ChainsThatTheDriverBuildsIntoDeepTrees) {
       {path("calls.frag"), 1, "calls.frag:1670: error: a value computed 30006 operations deep"},
       {path("nested.frag"), 1, "nested.frag:5: error: a value computed 311117 operations deep"},
       {path("fewer.frag"), 0, ""},
+      {path("ifs.frag"), 0, ""},
   });
   for (const char* name : {"variables.frag", "nested.frag"})
     expect_case("render -o " + path("chain.png") + " --size 8x8", {path(name), 1, "operations deep"});

@@ -264,6 +264,40 @@ TEST(Check, AFunctionsArrayCountsOnceForEachCallThatMainReaches) {
                                 "16384 are allowed in a shader's arrays (the GL driver compiles code for each)");
 }
 
+// A chain's depth flows through an if: after it, a variable holds what
+// either branch left in it, and one branch never sees the other's writes.
+// Each half below is 1,500 variables (3,000 operations); the whole, 6,000,
+// is past the limit of 5,000.
+TEST(Check, AChainsDepthFlowsThroughEitherBranchOfAnIf) {
+  const auto chain = [](const std::string& from, const std::string& name) {
+    std::string text = "  float " + name + "0 = " + from + ";\n";
+    for (int i = 1; i < 1500; ++i)
+      text += "  float " + name + std::to_string(i) + " = " + name + std::to_string(i - 1) + " * 1.0001 + 0.1;\n";
+    return text;
+  };
+  const std::string start = "void mainImage(out vec4 c, in vec2 f) {\n" + chain("f.x", "a") + "  float y = f.y;\n";
+  struct Case {
+    std::string middle;  // between the first half and the second, which starts from y
+    bool past;
+  };
+  const std::vector<Case> cases = {
+      {"  if (f.x > 1.0) y = a1499;\n", true},                      // the yes branch's value
+      {"  if (f.x > 1.0) y = 0.0; else y = a1499;\n", true},        // the no branch's
+      {"  if (f.x > 1.0) y = a1499;\n  y = f.y;\n", false},        // written again after it
+      {"  if (f.x > 1.0) { y = a1499; } else {\n" + chain("y", "b") + "  }\n  y = f.y;\n", false},  // no sees not yes's write
+  };
+  TempDir dir;
+  for (const Case& c : cases) {
+    write_file(dir / "scene.frag", start + c.middle + chain("y", "z") + "  c = vec4(z1499);\n}\n");
+    Diagnostics diags;
+    check_scene(dir / "scene.frag", {}, &diags);
+    EXPECT_EQ(count_errors(diags), c.past ? 1 : 0) << c.middle << join(diags);
+    if (c.past) {
+      EXPECT_NE(join(diags).find("operations deep"), std::string::npos) << join(diags);
+    }
+  }
+}
+
 TEST(Check, PrototypeThatNothingCallsIsNoError) {
   TempDir dir;
   write_file(dir / "scene.frag", "float helper(vec2 p);\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
