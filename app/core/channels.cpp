@@ -1,14 +1,13 @@
 #include "core/channels.h"
 
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <sstream>
 
 #include "core/cube_map.h"
 #include "core/files.h"
+#include "core/stderr_shut.h"
 #include "core/volume.h"
 
 namespace rm {
@@ -33,29 +32,6 @@ std::string one_line(const std::string& message) {
   }
   return joined;
 }
-
-// libpng prints its errors to stderr besides handing them to OIIO (whose
-// handler returns, so libpng's own runs after it): the message reaches the
-// user through OIIO, in one line, so stderr is shut while OIIO reads.
-// (Another thread's line written in that time is lost with it.)
-class StderrShut {
- public:
-  StderrShut() : saved_(dup(STDERR_FILENO)) {
-    const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
-    if (saved_ >= 0 && null >= 0) dup2(null, STDERR_FILENO);
-    if (null >= 0) close(null);
-  }
-  ~StderrShut() {
-    if (saved_ < 0) return;
-    dup2(saved_, STDERR_FILENO);
-    close(saved_);
-  }
-  StderrShut(const StderrShut&) = delete;
-  StderrShut& operator=(const StderrShut&) = delete;
-
- private:
-  int saved_;
-};
 
 // Opens `path` and checks its header: no pixel is read yet.
 std::unique_ptr<OIIO::ImageInput> open_checked(const std::filesystem::path& path, std::string* error) {

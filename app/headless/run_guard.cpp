@@ -1,5 +1,6 @@
 #include "headless/run_guard.h"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <unistd.h>
 
@@ -12,14 +13,17 @@
 
 namespace rm {
 
-RunGuard::RunGuard(double seconds, std::string option) : option_(std::move(option)) {
+RunGuard::RunGuard(double seconds, std::string option)
+    : option_(std::move(option)), stderr_(fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 0)) {
   if (seconds > 0 || signals_.fd() >= 0) thread_ = std::thread([this, seconds] { watch(seconds); });
 }
 
 RunGuard::~RunGuard() {
-  if (!thread_.joinable()) return;
-  signals_.wake();
-  thread_.join();
+  if (thread_.joinable()) {
+    signals_.wake();
+    thread_.join();
+  }
+  if (stderr_ >= 0) close(stderr_);
 }
 
 bool RunGuard::write(const std::filesystem::path& path, const std::function<bool()>& write) {
@@ -77,8 +81,9 @@ void RunGuard::end(int signal) {
       why + "; " +
       (!undo_.empty() ? undo_what_ + " is removed" : written_.empty() ? std::string("nothing was written") : frames);
   // On a terminal the line goes below the progress bar (and a ^C), not after it.
-  std::fprintf(stderr, "%sraymarching: error: %s\n", isatty(STDERR_FILENO) ? "\n" : "", said.c_str());
-  std::fflush(stderr);
+  std::fflush(stderr);  // what was said before, first
+  const int to = stderr_ >= 0 ? stderr_ : STDERR_FILENO;
+  dprintf(to, "%sraymarching: error: %s\n", isatty(to) ? "\n" : "", said.c_str());
   std::_Exit(timed_out ? kExitTimeout : 128 + signal);  // the GL thread may be inside a draw: no destructors
 }
 

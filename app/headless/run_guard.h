@@ -41,6 +41,9 @@ class RunGuard {
   [[noreturn]] void end(int signal);  // 0: the limit passed
 
   std::string option_;
+  // stderr as the run began: the last line is said there even while a
+  // library's stderr is shut (core/stderr_shut.h).
+  int stderr_;
   StopSignals signals_;
   std::mutex mutex_;  // held by a write, and by the watch when it ends the run
   std::vector<std::filesystem::path> written_;
