@@ -26,6 +26,8 @@ class Builder {
   // False when no shared context could be made: the caller builds in place.
   bool available() const { return context_ != nullptr; }
   bool busy() const { return thread_.joinable(); }
+  // A build not finished yet (busy() also holds for one finished and not yet taken).
+  bool running() const { return thread_.joinable() && !done_; }
   // Runs `build` on the builder's thread; wakes the event loop when done.
   void start(std::function<ReloadStatus()> build);
   // The finished build's status, once; nullopt while one runs or none did.

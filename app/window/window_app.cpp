@@ -95,6 +95,10 @@ class WindowApp {
     ui_.set_visible(options.interface);
   }
 
+  // A build still running once run() has returned: the driver may compile
+  // a large shader for a minute more.
+  bool building() const { return builder_.running(); }
+
   int run() {
     for (size_t i = 0; i < options_.channels.size(); ++i) {
       const auto& path = options_.channels[i];
@@ -1245,6 +1249,15 @@ int run_window(const WindowOptions& options) {
     glfwSetWindowIconifyCallback(window, [](GLFWwindow* w, int iconified) { app_of(w)->on_iconify(iconified); });
     glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int width, int height) { app_of(w)->on_resize(width, height); });
     status = app.run();
+    if (app.building()) {
+      // The window is gone and all it writes is written (a take, the shots'
+      // lines), but the builder's context cannot be torn down under the
+      // driver's compile: the process ends now instead of waiting for it.
+      if (options.verbose) std::cerr << "raymarching: the build under way is abandoned\n";
+      std::cout.flush();
+      std::cerr.flush();
+      std::_Exit(status);
+    }
   }
   glfwDestroyWindow(window);
   glfwTerminate();

@@ -7,7 +7,8 @@ minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
-built while the running one keeps drawing; a light animated scene keeps
+built while the running one keeps drawing, and Q during such a build
+quits within 1 s; a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
 its buffer drawn in tiles, and Q quits within 1 s while it draws; a runaway buffer is reported too slow with its
@@ -75,6 +76,22 @@ void mainImage(out vec4 c, in vec2 f) {
   float a = uv.x;
   if (iTime < -1.0) { S64 S64 S64 S64 S64 S64 S64 S64 }
   c = vec4(uv, 0.5 + 0.5 * sin(iTime + a), 1.0);
+}
+"""
+
+
+# Slower still: eight such chains, each short enough for validation's chain
+# limit, take the driver several seconds to compile (4 s for four here).
+SLOWER_TO_BUILD = """// slow to compile, in eight chains
+#define S(a) a = fract(a * 1.37 + sin(a + SEED));
+#define S8(a) S(a) S(a) S(a) S(a) S(a) S(a) S(a) S(a)
+#define S64(a) S8(a) S8(a) S8(a) S8(a) S8(a) S8(a) S8(a) S8(a)
+#define S512(a) S64(a) S64(a) S64(a) S64(a) S64(a) S64(a) S64(a) S64(a)
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  float a = uv.x, b = uv.y, d = uv.x * uv.y, e = uv.x + uv.y, g = 0.1, h = 0.2, k = 0.3, m = 0.4;
+  if (iTime < -1.0) { S512(a) S512(b) S512(d) S512(e) S512(g) S512(h) S512(k) S512(m) }
+  c = vec4(uv, 0.5 + 0.5 * sin(iTime + a + b + d + e + g + h + k + m), 1.0);
 }
 """
 
@@ -314,6 +331,26 @@ def keeps_drawing_while_building(work):
     check("and Q quits", proc.wait(timeout=10) == 0)
 
 
+def quit_during_a_build(work):
+    # Q while the driver compiles a save (seconds here, a minute for a large
+    # shader): the process used to wait for the compile to end before it exited.
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
+    scene, proc, err, _, window = start(work, "abandoned.frag", SLOW_TO_BUILD.replace("SEED", seed).replace(
+        "if (iTime < -1.0) { S64 S64 S64 S64 S64 S64 S64 S64 }", ""), "a light animated scene opens")
+    if not window:
+        return
+    save_by_rename(scene, SLOWER_TO_BUILD.replace("SEED", seed))
+    building = wait_for(lambda: "building generation 2" in open(err).read(), timeout=10)
+    time.sleep(1.0)
+    status, took = quit_with_q(proc, window)
+    print(f"     Q to exit during a build: {took:.3f} s")
+    log = open(err).read()
+    check("Q during a save's build quits within 1 s", building and status == 0 and took < 1.0,
+          f"status {status}, {took:.3f} s: {log[-500:]}")
+    check("... without waiting for the build, which it says it abandoned",
+          "reload ok generation 2" not in log and "the build under way is abandoned" in log, log[-500:])
+
+
 def light_first_picture_kept(work):
     # A light animated scene well within budget: its first picture is not
     # dropped for a smaller one. A small tile's time is mostly the draw's own:
@@ -455,6 +492,7 @@ if __name__ == "__main__":
         too_slow_session(work)
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
+        quit_during_a_build(work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
