@@ -108,7 +108,11 @@ class WindowApp {
         return kExitUsage;
       }
     }
-    loaded(project_.reload());
+    // The first program is built as a save's is, on the builder: the window
+    // shows its grey and answers Q while the driver compiles (a large shader
+    // held a window that could not be quit for a minute).
+    watcher_->watch({options_.scene});
+    load();
     while (!glfwWindowShouldClose(window_) && !quit_) {
       // A picture that cannot change is drawn once: then sleep until an event
       // or a save (wake_on_save_), or until the watcher or a background build
@@ -547,7 +551,10 @@ class WindowApp {
   // sample 0 shows it again, a later sample refines it (--refine).
   void start_picture(int width, int height, bool advance, int sample = 0) {
     if (advance) take_inputs(width, height);
-    if (!project_.ready() || too_slow_) return;  // the grey, or the picture as it is
+    if (!project_.ready() || too_slow_) {  // the grey, or the picture as it is
+      dirty_ = false;  // presented once: it was presented in a loop, a core's worth, while nothing compiled
+      return;
+    }
     if (advance) take_.frame(inputs_);
 
     const bool moving = advance && ((use_.time && !clock_.paused()) || mouse_.imouse().z > 0.0f);
@@ -858,6 +865,8 @@ class WindowApp {
     if (errors_ > 0) {
       title += std::to_string(errors_) + (errors_ == 1 ? " error" : " errors");
       title += project_.ready() ? ", showing last good" : ", nothing to show yet";
+    } else if (!project_.ready()) {  // the first program, on the builder
+      title += "compiling";
     } else if (drawing_ && (drawing_->tiles > 0 || drawing_->buffer_plan)) {  // a picture in tiles, still coming
       title += "drawing in tiles";
     } else {

@@ -550,7 +550,7 @@ ANIMATED = STATIC.replace("float(i));", "float(i) + iTime);")
 DRAGGABLE = STATIC.replace("fract(v)", "fract(v + iMouse.x)")
 
 
-def idle_session(source, name, action=None):
+def idle_session(source, name, action=None, marker="presented generation 1"):
     """Opens `source`, lets it settle, measures CPU time over 4 s (after
     `action`, if any), drags the mouse, quits. Returns (cpu s, frames drawn)."""
     work = tempfile.mkdtemp(prefix="rm-e2e-idle-")
@@ -559,7 +559,7 @@ def idle_session(source, name, action=None):
         f.write(source)
     err_path = os.path.join(work, "stderr.txt")
     proc = open_window([BINARY, scene, "--size", "320x180", "-v"], os.path.join(work, "stdout.txt"), err_path, work)
-    window = first_frame_window(proc, name, err_path, timeout=40)
+    window = first_frame_window(proc, name, err_path, timeout=40, marker=marker)
     if not window:
         print(f"     {name}: no window or no first frame; stderr: {open(err_path).read()!r}")
         return None, None
@@ -599,6 +599,12 @@ def idle_costs_nothing():
     check("an idle static shader uses under a tenth of an animated one's CPU",
           None not in (animated, static) and static < animated / 10, detail)
     check("pausing time stops re-rendering", None not in (animated, paused) and paused < animated / 10, detail)
+    # A scene broken from the start: nothing to show but the grey and the
+    # error. The grey was presented again and again, a core's worth.
+    broken, _ = idle_session_retried("void mainImage(out vec4 c, in vec2 f) { c = nope; }\n", "broken.frag",
+                                     marker="broken.frag:1:")
+    check("a window with nothing to show yet (a broken scene) idles too",
+          None not in (animated, broken) and broken < animated / 10, f"CPU over 4 s: broken {broken}; {detail}")
     check("a static shader is redrawn on a drag only when it reads iMouse",
           None not in (static_frames, drag_frames) and static_frames <= 3 and drag_frames > static_frames + 2,
           f"frames drawn: {static_frames} vs {drag_frames}")
