@@ -7,8 +7,8 @@ minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
-built while the running one keeps drawing, and Q during such a build
-quits within 1 s; a light animated scene keeps
+built while the running one keeps drawing, and Q during such a build,
+or while the first program compiles, quits within 1 s; a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
 its buffer drawn in tiles, and Q quits within 1 s while it draws; a runaway buffer is reported too slow with its
@@ -351,6 +351,31 @@ def quit_during_a_build(work):
           "reload ok generation 2" not in log and "the build under way is abandoned" in log, log[-500:])
 
 
+def quit_while_the_first_program_builds(work):
+    # The first program is built on the builder too: it was built on the
+    # window's thread, and a 5 s compile held Q for 3.3 s.
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"
+    scene = os.path.join(work, "first.frag")
+    with open(scene, "w") as f:
+        f.write(SLOWER_TO_BUILD.replace("SEED", seed))
+    err = os.path.join(work, "first.frag.stderr")
+    proc = open_window([BINARY, scene, "--size", "320x180", "-v"], os.path.join(work, "first.frag.stdout"), err, work)
+    window = wait_for(lambda: xdotool("search", "--name", "first.frag"), timeout=20)
+    building = wait_for(lambda: "building generation 1" in open(err).read(), timeout=20)
+    if not window or not building:
+        proc.kill()
+        check("a window slow to compile opens at once", False, open(err).read()[-500:])
+        return
+    check("... with its title saying it compiles", "compiling" in xdotool("getwindowname", window.splitlines()[0]),
+          xdotool("getwindowname", window.splitlines()[0]))
+    time.sleep(1.0)
+    status, took = quit_with_q(proc, window.splitlines()[0])
+    print(f"     Q to exit while the first program compiles: {took:.3f} s")
+    log = open(err).read()
+    check("Q while the first program compiles quits within 1 s", status == 0 and took < 1.0
+          and "presented generation 1" not in log, f"status {status}, {took:.3f} s: {log[-500:]}")
+
+
 def light_first_picture_kept(work):
     # A light animated scene well within budget: its first picture is not
     # dropped for a smaller one. A small tile's time is mostly the draw's own:
@@ -493,6 +518,7 @@ if __name__ == "__main__":
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
         quit_during_a_build(work)
+        quit_while_the_first_program_builds(work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
