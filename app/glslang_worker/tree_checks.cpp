@@ -285,15 +285,13 @@ class ChainDepth {
       const auto yes_wrote = undone(selection->getTrueBlock(), &yes);
       const auto no_wrote = undone(selection->getFalseBlock(), &no);
       // After the if, a variable holds what either branch left in it: its
-      // value before the if where a branch did not write it.
-      std::unordered_map<long long, int> after;
+      // value before the if (values_ now) where a branch did not write it.
       for (const auto& [id, depth] : yes_wrote) {
         auto other = no_wrote.find(id);
-        after[id] = std::max(depth, other != no_wrote.end() ? other->second : values_[id]);
+        hold(id, std::max(depth, other != no_wrote.end() ? other->second : values_[id]));
       }
       for (const auto& [id, depth] : no_wrote)
-        if (!yes_wrote.count(id)) after[id] = std::max(depth, values_[id]);
-      for (const auto& [id, depth] : after) hold(id, depth);
+        if (!yes_wrote.count(id)) hold(id, std::max(depth, values_[id]));
       return note(node, 1 + std::max({condition, yes, no}));
     }
     if (auto* loop = node->getAsLoopNode()) {
