@@ -25,7 +25,6 @@ class KeptPicture {
   GLuint target(glm::ivec2 size);
   bool has_picture() const { return drawn_; }
   void mark_drawn() { drawn_ = true; }
-  void forget() { drawn_ = false; }  // the picture moved on without it
   glm::ivec2 size() const { return kept_ ? glm::ivec2(kept_->width(), kept_->height()) : glm::ivec2(0); }
   // Copies the picture over the window's framebuffer (0) of `window` pixels,
   // stretched (bilinear) when it is smaller.

@@ -353,8 +353,7 @@ class WindowApp {
   }
 
   // The window shows what it showed again (uncovered, restored, or with the
-  // stale badge now): the kept picture is presented again, with its
-  // samples; only one that went straight to the window is drawn again.
+  // stale badge now): the kept picture is presented again, with its samples.
   void show_again() {
     if (picture_.has_picture()) ui_frames_ = std::max(ui_frames_, 1);
     else dirty_ = true;
@@ -470,10 +469,12 @@ class WindowApp {
   }
 
   // One iteration's picture: the scene drawn again when `redraw`, then the
-  // stale badge and the interface. With the interface shown the scene goes
-  // into the kept picture, which is copied to the window, so that the
-  // interface can be drawn again over it without the shader; hidden (F2), it
-  // goes straight to the window, and the interface costs nothing.
+  // stale badge and the interface. The scene goes into the kept picture,
+  // which is copied to the window, so that the interface can be drawn again
+  // over it without the shader. Drawing straight into the window would save
+  // the copy (about a millisecond), but llvmpipe generates a shader's code
+  // for each target format, and the builder's warm-up draws into the kept
+  // picture's: the window would generate each new program's code itself.
   void frame(bool redraw) {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
@@ -486,9 +487,7 @@ class WindowApp {
     // A picture drawn because something changed once gives way to a newer
     // one; a moving one is finished first. A new window size starts over.
     if (drawing_ && (drawing_->window != glm::ivec2(width, height) || (drawing_->resting && redraw))) drawing_.reset();
-    // The interface shown again (F2) over a picture that went straight to
-    // the window: the same picture again, without advancing anything.
-    if (!drawing_ && (redraw || (ui_.visible() && !picture_.has_picture()))) start_picture(width, height, redraw);
+    if (!drawing_ && redraw) start_picture(width, height, true);
     else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
     // A screenshot in progress goes first: the picture waits for it, so
     // that each turn of the loop draws one slice of the budget, not two.
@@ -503,13 +502,13 @@ class WindowApp {
           steady_ns() - last_present_ns_ < kShotPresentIntervalNs)
         return;
     }
-    const bool straight = drawing_ && shots_.empty() && !holds_for_build() && continue_picture();
+    if (drawing_ && shots_.empty() && !holds_for_build()) continue_picture();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
     glViewport(0, 0, width, height);
-    if (!straight && picture_.has_picture()) {
+    if (picture_.has_picture()) {
       picture_.present({width, height});
-    } else if (!straight) {  // the grey until a first good load
+    } else {  // the grey until a first good load
       glClearNamedFramebufferfv(0, GL_COLOR, 0, kNoPictureGrey);
     }
     if (errors_ > 0) draw_stale_badge(width, height);
@@ -641,51 +640,40 @@ class WindowApp {
 
   // Draws tiles of the picture in progress until one slice of the budget is
   // spent, so that the loop reads input between slices. The first tile of a
-  // picture that fits the budget is the whole picture; at full size with the
-  // interface hidden, it goes straight into the window (returns true).
-  bool continue_picture() {
+  // picture that fits the budget is the whole picture.
+  void continue_picture() {
     Picture& p = *drawing_;
     const long long slice_start = steady_ns();
     const double slice_ms = budget_.budget_ms() > 0 ? budget_.budget_ms() : 1e12;
-    bool straight = false;
     do {
       if (buffer_tile()) {
-        if (!drawing_) return false;  // the watchdog stopped it
+        if (!drawing_) return;  // the watchdog stopped it
         continue;
       }
       const glm::ivec4 tile = p.plan.next();
       const bool first_draw = !program_drawn_;
-      // With refinement on, every picture goes into the kept float picture,
-      // where a picture at rest gathers its samples: llvmpipe compiles a
-      // shader again for each target format (250 ms for tori), and one
-      // format spares the window that stall when the picture comes to rest.
-      straight = p.tiles == 0 && tile == glm::ivec4(0, 0, p.size) && p.scale == 1.0 && !ui_.visible() &&
-                 options_.refine <= 1;
-      if (straight) picture_.forget();
-      const GLuint target = straight ? 0 : picture_.target(p.size);
       const long long start = steady_ns();
-      graph_.draw_image(project_, p.inputs, p.size, target, tile);
+      graph_.draw_image(project_, p.inputs, p.size, picture_.target(p.size), tile);
       drawn_generation_ = project_.generation();
       glFinish();  // the tile is done: input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
       p.plan.drawn(tile, ms);
       ++p.tiles;
-      if (!straight) picture_.mark_drawn();
+      picture_.mark_drawn();
       // The first draw of a program also compiles it in the driver: not a measure of the shader.
       const bool smallest = smallest_tile(tile);
       if (smallest && program_drawn_ && ms > options_.tile_limit_s * 1000.0) {
         report_too_slow(project_.passes().back().file, tile, ms);
-        return false;
+        return;
       }
       if (!program_drawn_ && smallest) p.compile_ms = ms;
       if (!program_drawn_ && options_.verbose)
         std::cerr << "raymarching: first draw of generation " << project_.generation() << ": a " << tile.z << "x"
                   << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";
       program_drawn_ = true;
-      if (!first_draw && replan(ms)) return false;
+      if (!first_draw && replan(ms)) return;
     } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
-    if (p.plan.done()) finish_picture(straight);
-    return straight;
+    if (p.plan.done()) finish_picture();
   }
 
   // One tile of the next buffer pass this picture still draws; false when
@@ -762,13 +750,13 @@ class WindowApp {
     return true;
   }
 
-  void finish_picture(bool straight) {
+  void finish_picture() {
     const Picture& p = *drawing_;
     // The picture kept at rest, at full size, now holds this many samples.
     // A feedback project's moving picture counts too: it is never drawn
     // again at rest (that would advance its buffers), so once the clock
     // stops, its last picture is the one refined.
-    samples_ = (p.resting || project_.has_feedback()) && p.scale == 1.0 && !straight ? p.inputs.sample + 1 : 0;
+    samples_ = (p.resting || project_.has_feedback()) && p.scale == 1.0 ? p.inputs.sample + 1 : 0;
     model_.figures.samples = samples_;
     if (p.inputs.sample > 0) {  // the budget measured sample 0's picture, with its buffers
       frame_ms_ = p.plan.drawn_ms();

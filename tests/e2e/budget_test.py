@@ -8,7 +8,10 @@ a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
 built while the running one keeps drawing, and Q during such a build,
-or while the first program compiles, quits within 1 s; a light animated scene keeps
+or while the first program compiles, quits within 1 s; with --refine 0 and
+the interface hidden, the window's first draw of a new program does not
+compile it again (it drew straight into the window's format, which the
+builder's warm-up did not match); a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
 its buffer drawn in tiles, and Q quits within 1 s while it draws; a runaway buffer is reported too slow with its
@@ -376,6 +379,34 @@ def quit_while_the_first_program_builds(work):
           and "presented generation 1" not in log, f"status {status}, {took:.3f} s: {log[-500:]}")
 
 
+def no_compile_in_the_window(work):
+    # With --refine 0 and the interface hidden, the window drew each picture
+    # straight into its own framebuffer, whose format the builder's warm-up
+    # did not match: llvmpipe generated each new program's code again in
+    # the window's first draw, a stall as long as the driver's compile.
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
+    scene, proc, err, _, window = start(work, "unwarmed.frag", SLOW_TO_BUILD.replace("SEED", seed),
+                                        "a window slow to compile opens with --refine 0", "--refine", "0", "--no-ui",
+                                        "--target-fps", "0",
+                                        timeout=60)
+    if not window:
+        return
+    save_by_rename(scene, SLOW_TO_BUILD.replace("SEED", seed).replace("c = vec4(uv,", "c = vec4(uv.yx,"))
+    shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=60)
+    log = open(err).read()
+    built = re.findall(r"reload ok generation (\d) \(rebuilt:[^;]*; .*?warm-up ([\d.]+) ms\)", log)
+    first = re.findall(r"first draw of generation (\d): a \d+x\d+ tile, ([\d.]+) ms", log)
+    check("... and a code edit's program is shown", shown and len(built) == 2 and len(first) == 2, log[-800:])
+    if shown and len(built) == 2 and len(first) == 2:
+        for (generation, warm), (_, draw) in zip(built, first):
+            print(f"     generation {generation}: the builder's warm-up draw {float(warm):.0f} ms, "
+                  f"the window's first draw {float(draw):.0f} ms")
+        check("the window's first draws do not compile the program again (a quarter of the warm-up's time)",
+              all(float(draw) < float(warm) / 4 for (_, warm), (_, draw) in zip(built, first)),
+              f"{built} {first}")
+    quit_with_q(proc, window)
+
+
 def light_first_picture_kept(work):
     # A light animated scene well within budget: its first picture is not
     # dropped for a smaller one. A small tile's time is mostly the draw's own:
@@ -519,6 +550,7 @@ if __name__ == "__main__":
         keeps_drawing_while_building(work)
         quit_during_a_build(work)
         quit_while_the_first_program_builds(work)
+        no_compile_in_the_window(work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
