@@ -139,6 +139,45 @@ std::map<fs::path, FrameGraph::PassState> FrameGraph::pass_states(const Project&
   return out;
 }
 
+FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<ChannelSpec, 4>& channels) const {
+  StandIns out;
+  out.state.format = cubemap ? format_of(true) : RenderTarget::kFormat;
+  // A texture like the graph's, of as many mip levels. Its size matters
+  // only as a power of two or not, which llvmpipe's code depends on, and
+  // the builder cannot know an image's before the graph reads it: the
+  // guess is Shadertoy's, whose images, cube maps, volumes and Cube A faces
+  // are all powers of two. A picture's size is rarely one.
+  auto make = [&](GLenum target, GLenum format, glm::ivec2 size, int levels) {
+    gl::Texture texture = gl::make_texture(target);
+    if (target == GL_TEXTURE_3D) glTextureStorage3D(texture.get(), levels, format, size.x, size.y, size.x);
+    else glTextureStorage2D(texture.get(), levels, format, size.x, size.y);
+    out.textures.push_back(std::move(texture));
+    return out.textures.back().get();
+  };
+  const glm::ivec2 odd(3), even(4);
+  constexpr GLenum kTargets[3] = {GL_TEXTURE_2D, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_3D};
+  for (size_t c = 0; c < 4; ++c) {
+    const ChannelSpec& spec = channels[c];
+    ChannelInput& in = out.state.channels[c];
+    const GLenum target = kTargets[shape_index(spec.shape)];
+    in.texture = black_[shape_index(spec.shape)].get();
+    in.sampler = sampler_for(spec.sampler);
+    switch (spec.kind) {
+      case ChannelSpec::Kind::Image: in.texture = make(target, GL_RGBA16F, even, mip_levels(even)); break;
+      case ChannelSpec::Kind::Pass: {
+        const bool cube = spec.shape == ChannelSpec::Shape::Cube;
+        in.texture = make(target, format_of(cube), cube ? even : odd, mip_levels(cube ? even : odd));
+        break;
+      }
+      case ChannelSpec::Kind::Keyboard:
+        in.texture = make(GL_TEXTURE_2D, GL_R8, glm::ivec2(KeyboardState::kKeys, 3), 1);
+        break;
+      default: break;
+    }
+  }
+  return out;
+}
+
 ChannelInputs FrameGraph::inputs_of(const Project& project, size_t pass) const {
   ChannelInputs inputs;
   for (size_t c = 0; c < 4; ++c) {

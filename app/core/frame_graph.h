@@ -97,6 +97,17 @@ class FrameGraph {
     ChannelInputs channels;
   };
   std::map<fs::path, PassState> pass_states(const Project& project) const;
+  // A PassState for a pass the graph holds nothing for yet (a new pass, or
+  // every pass of the first program): its target's format (a Cube A pass's
+  // when `cubemap`), and textures of the format, shape and sampler the graph
+  // will bind for `channels`, so that a warm-up draw makes llvmpipe generate
+  // the code the pass's first draw needs. Safe on a builder's thread: it
+  // reads only what the constructor made.
+  struct StandIns {
+    PassState state;
+    std::vector<gl::Texture> textures;  // owned, for the warm-up's time
+  };
+  StandIns stand_ins(bool cubemap, const std::array<ChannelSpec, 4>& channels) const;
   // The latest output of a buffer pass (tests read it); 0 if none.
   GLuint buffer_texture(const fs::path& pass) const;
 

@@ -219,25 +219,30 @@ void Project::commit() {
       pass.cube = true;
       pass.cube_size = cube->second > 0 ? cube->second : ChannelSpec::kDefaultCubeSize;
     }
-    pass.channels = pass.scene->source().channels;
-    for (size_t c = 0; c < 4; ++c) {
-      ChannelSpec& spec = pass.channels[c];
-      if (spec.kind == ChannelSpec::Kind::Self) {
-        spec.kind = ChannelSpec::Kind::Pass;
-        spec.path = file;
-      }
-      // A --channelN file takes the place of what the image pass names, read
-      // as the same shape (a cube map stays a cube map: the shader samples one).
-      if (pass.is_image && !channel_overrides_[c].empty()) {
-        const ChannelSpec::Shape shape = spec.kind == ChannelSpec::Kind::Keyboard ? ChannelSpec::Shape::Flat : spec.shape;
-        spec = ChannelSpec{ChannelSpec::Kind::Image, shape, channel_overrides_[c],
-                           default_sampler(ChannelSpec::Kind::Image, shape)};
-      }
-    }
+    pass.channels = channels_of(file, pass.scene->source());
     passes_.push_back(std::move(pass));
   }
   rebuilt_ = swap.rebuilt;
   ++generation_;
+}
+
+std::array<ChannelSpec, 4> Project::channels_of(const fs::path& file, const Source& source) const {
+  std::array<ChannelSpec, 4> channels = source.channels;
+  for (size_t c = 0; c < 4; ++c) {
+    ChannelSpec& spec = channels[c];
+    if (spec.kind == ChannelSpec::Kind::Self) {
+      spec.kind = ChannelSpec::Kind::Pass;
+      spec.path = file;
+    }
+    // A --channelN file takes the place of what the image pass names, read
+    // as the same shape (a cube map stays a cube map: the shader samples one).
+    if (file == image_path_ && !channel_overrides_[c].empty()) {
+      const ChannelSpec::Shape shape = spec.kind == ChannelSpec::Kind::Keyboard ? ChannelSpec::Shape::Flat : spec.shape;
+      spec = ChannelSpec{ChannelSpec::Kind::Image, shape, channel_overrides_[c],
+                         default_sampler(ChannelSpec::Kind::Image, shape)};
+    }
+  }
+  return channels;
 }
 
 std::vector<fs::path> Project::watch_list() const {

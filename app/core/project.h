@@ -106,6 +106,10 @@ class Project {
   // Errors and warnings of the latest attempt, of every pass.
   const Diagnostics& diagnostics() const { return diagnostics_; }
   std::vector<fs::path> watch_list() const;
+  // What pass `file`, of `source`, reads on each channel: its pragmas with
+  // `self` resolved, and the image pass's with the --channelN files. Safe on
+  // a builder's thread (it reads only what the constructor set).
+  std::array<ChannelSpec, 4> channels_of(const fs::path& file, const Source& source) const;
   int generation() const { return generation_; }  // counts swaps
   // The passes the latest swap compiled anew (the others kept their programs).
   const std::vector<fs::path>& rebuilt() const { return rebuilt_; }

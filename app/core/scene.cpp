@@ -106,7 +106,7 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
   if (put_off()) return ReloadStatus::Unchanged;
   if (on_built) {
     start = std::chrono::steady_clock::now();
-    on_built(path_, *built);
+    on_built(path_, *built, source);
     times_.warm = ms_since(start);
   }
   std::string text = source.text;
@@ -193,7 +193,7 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     }
     if (constants) constants_rejected_.reset();
     if (cancelled && cancelled()) return give_up();
-    if (on_built) on_built(path_, *built);
+    if (on_built) on_built(path_, *built, twin);
     // A knob's #define or -D may hold a lifted number (a constant): its
     // value is then the tweak's, which the twin's preprocessor gives by name.
     std::vector<KnobValue> knobs;

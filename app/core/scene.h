@@ -26,8 +26,8 @@ struct ReloadTimes {
 };
 
 // Called with each program a reload compiled anew (not one from the cache),
-// and the pass file it belongs to.
-using OnBuilt = std::function<void(const fs::path& pass, const Program&)>;
+// the pass file it belongs to, and its source.
+using OnBuilt = std::function<void(const fs::path& pass, const Program&, const Source&)>;
 // Asked between a build's stages: true puts the build off (a background one).
 using Cancelled = std::function<bool()>;
 

@@ -258,13 +258,18 @@ class WindowApp {
   }
 
   // Each new program is drawn once into its pass's format, with what the
-  // pass reads now (a new pass, or a new image, reads nothing yet).
+  // pass reads now; a new pass with textures like those it will read.
   OnBuilt warm_up_hook() {
-    return [this, states = graph_.pass_states(project_)](const fs::path& pass, const Program& program) {
+    return [this, states = graph_.pass_states(project_)](const fs::path& pass, const Program& program,
+                                                         const Source& source) {
       if (!warm_up_) return;
       const auto state = states.find(pass);
-      if (state == states.end()) warm_up(program, RenderTarget::kFormat);
-      else warm_up(program, state->second.format, state->second.channels);
+      if (state != states.end()) {
+        warm_up(program, state->second.format, state->second.channels);
+      } else {
+        const FrameGraph::StandIns stand_ins = graph_.stand_ins(source.cubemap, project_.channels_of(pass, source));
+        warm_up(program, stand_ins.state.format, stand_ins.state.channels);
+      }
     };
   }
 
@@ -708,6 +713,9 @@ class WindowApp {
         report_too_slow(file, tile, ms);
         return true;
       }
+      if (first_of_pass && options_.verbose)
+        std::cerr << "raymarching: first draw of " << file.filename().string() << " in generation "
+                  << project_.generation() << ": a " << tile.z << "x" << tile.w << " tile, " << ms << " ms\n";
       p.buffer_plan->drawn(tile, ms);
       p.buffers_ms += ms;
       ++p.buffer_tiles;

@@ -11,7 +11,9 @@ built while the running one keeps drawing, and Q during such a build,
 or while the first program compiles, quits within 1 s; with --refine 0 and
 the interface hidden, the window's first draw of a new program does not
 compile it again (it drew straight into the window's format, which the
-builder's warm-up did not match); a light animated scene keeps
+builder's warm-up did not match), nor that of each pass of a first
+program, whose warm-up stands in textures like those the pass will read;
+a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
 its buffer drawn in tiles, and Q quits within 1 s while it draws; a runaway buffer is reported too slow with its
@@ -407,6 +409,34 @@ def no_compile_in_the_window(work):
     quit_with_q(proc, window)
 
 
+def no_compile_in_the_window_for_new_passes(work):
+    # The warm-up of a pass the graph has nothing for yet (every pass of the
+    # first program) drew with nothing bound to its channels: llvmpipe keys
+    # the code by the formats of the textures read, so the window generated
+    # each such pass's code again in its first draw (a buffer that reads
+    # itself and the keyboard, and an image that reads the buffer).
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
+    with open(os.path.join(work, "slow_buffer.frag"), "w") as f:
+        f.write("#pragma channel0 self\n#pragma channel1 keyboard\n" + SLOW_TO_BUILD.replace("SEED", seed).replace(
+            "c = vec4(uv,", "c = texture(iChannel0, uv) * 0.5 + texture(iChannel1, uv) + vec4(uv,"))
+    scene, proc, err, _, window = start(work, "reads_a_buffer.frag", '#pragma channel0 "slow_buffer.frag"\n' +
+                                        SLOW_TO_BUILD.replace("SEED", seed).replace(
+                                            "c = vec4(uv,", "c = texture(iChannel0, uv) + vec4(uv,"),
+                                        "a project slow to compile opens", "--no-ui", timeout=60)
+    if not window:
+        return
+    log = open(err).read()
+    warm = re.search(r"reload ok generation 1 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms\)", log)
+    first = re.findall(r"first draw of (?:slow_buffer\.frag in )?generation 1: a \d+x\d+ tile, ([\d.]+) ms", log)
+    check("... and logs its warm-up and both passes' first draws", warm and len(first) == 2, log[-800:])
+    if warm and len(first) == 2:
+        print(f"     the builder's warm-up draws {float(warm.group(1)):.0f} ms; the window's first draws "
+              f"{', '.join(f'{float(ms):.0f}' for ms in first)} ms")
+        check("the window's first draws of new passes do not compile them again (an eighth of the warm-up's time)",
+              all(float(ms) < float(warm.group(1)) / 8 for ms in first), f"{warm.group(1)} {first}")
+    quit_with_q(proc, window)
+
+
 def light_first_picture_kept(work):
     # A light animated scene well within budget: its first picture is not
     # dropped for a smaller one. A small tile's time is mostly the draw's own:
@@ -551,6 +581,7 @@ if __name__ == "__main__":
         quit_during_a_build(work)
         quit_while_the_first_program_builds(work)
         no_compile_in_the_window(work)
+        no_compile_in_the_window_for_new_passes(work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/capture.h"
 #include "core/frame_graph.h"
 #include "core/project.h"
 #include "egl_fixture.h"
@@ -172,6 +173,57 @@ TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
 
 // The window builds a reload on another thread: prepare() must leave the
 // running graph drawing as it was until commit() swaps it.
+// What llvmpipe's code for a pass depends on in a texture it reads: the
+// target, the format, whether it has mip levels, and whether its sides are
+// powers of two.
+std::tuple<GLint, GLint, bool, bool, bool> described(GLuint texture) {
+  GLint target = 0, format = 0, levels = 0, width = 0, height = 0;
+  glGetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
+  glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+  glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+  glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_WIDTH, &width);
+  glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_HEIGHT, &height);
+  auto power_of_two = [](GLint n) { return n > 0 && (n & (n - 1)) == 0; };
+  return {target, format, levels > 1, power_of_two(width), power_of_two(height)};
+}
+
+// A builder warms a pass the graph holds nothing for up with stand-ins:
+// each like what the graph binds once it draws (else the window's first
+// draw generates the pass's code again), for every kind of channel, and
+// for the image pass's --channelN file.
+TEST_F(Passes, StandInsAreLikeTheTexturesThePassReads) {
+  std::string error;
+  ASSERT_TRUE(write_image(dir_ / "rock.png", Image{8, 8, std::vector<float>(8 * 8 * 4, 0.5f)}, {},
+                          Overwrite::Replace, &error)) << error;
+  write_file(dir_ / "cube_a.frag", "void mainCubemap(out vec4 c, in vec2 f, in vec3 ro, in vec3 rd) { c = vec4(rd, 1); }\n");
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 self filter=nearest wrap=clamp\n#pragma channel1 keyboard\n"
+                                     "#pragma channel2 \"rock.png\"\n#pragma channel3 \"cube_a.frag\" cube\n"
+                                     "void mainImage(out vec4 c, in vec2 f) {\n"
+                                     "  c = texelFetch(iChannel0, ivec2(f), 0) + texture(iChannel1, f) + texture(iChannel2, f) +\n"
+                                     "      texture(iChannel3, vec3(1));\n}\n");
+  write_file(dir_ / "image.frag", std::string(kShowChannel0) + "#pragma channel1 \"cube_a.frag\" cube\n");
+  project_ = std::make_unique<Project>(dir_ / "image.frag", SourceOptions{}, disk_file_system(),
+                                       std::array<fs::path, 4>{{{}, {}, {}, dir_ / "rock.png"}});
+  ASSERT_EQ(project_->reload(), ReloadStatus::Swapped) << join(project_->diagnostics());
+  ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+  frame(0, {5, 3});
+  frame(1, {5, 3});
+  const auto states = graph_.pass_states(*project_);
+  ASSERT_EQ(states.size(), 3u);
+  for (const Pass& pass : project_->passes()) {
+    const FrameGraph::PassState& real = states.at(pass.file);
+    const FrameGraph::StandIns stand_ins =
+        graph_.stand_ins(pass.scene->source().cubemap, project_->channels_of(pass.file, pass.scene->source()));
+    EXPECT_EQ(stand_ins.state.format, real.format) << pass.file.filename() << "'s target";
+    for (size_t c = 0; c < 4; ++c) {
+      const ChannelInput& stand_in = stand_ins.state.channels[c];
+      EXPECT_EQ(described(stand_in.texture), described(real.channels[c].texture))
+          << pass.file.filename() << "'s iChannel" << c;
+      EXPECT_EQ(stand_in.sampler, real.channels[c].sampler) << pass.file.filename() << "'s iChannel" << c;
+    }
+  }
+}
+
 TEST_F(Passes, APreparedReloadLeavesTheRunningGraphDrawingUntilItIsCommitted) {
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
   write_file(dir_ / "image.frag", std::string(kShowChannel0));
@@ -179,7 +231,7 @@ TEST_F(Passes, APreparedReloadLeavesTheRunningGraphDrawingUntilItIsCommitted) {
   EXPECT_EQ(at(frame(0), 1, 1)[0], 1.0f);
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0); }\n");
   std::vector<GLuint> built;
-  auto count_built = [&](const fs::path& pass, const Program& program) {
+  auto count_built = [&](const fs::path& pass, const Program& program, const Source&) {
     EXPECT_EQ(pass, dir_ / "buffer_a.frag");
     built.push_back(program.id());
   };

@@ -160,7 +160,7 @@ TEST_F(TweakGpu, ATwinBuildGivesUpWhenCancelledAndIsWantedStill) {
   EXPECT_TRUE(scene.wants_twin());
   bool warmed = false;
   asked = 0;
-  EXPECT_FALSE(scene.prepare_twin([&](const fs::path&, const Program&) { warmed = true; },
+  EXPECT_FALSE(scene.prepare_twin([&](const fs::path&, const Program&, const Source&) { warmed = true; },
                                   [&] { return ++asked >= 2; }));  // compiled, before the warm-up
   EXPECT_FALSE(warmed);
   EXPECT_TRUE(scene.wants_twin());
