@@ -16,6 +16,7 @@
 #include <cstring>
 
 #include "core/host_inputs.h"
+#include "core/one_line.h"
 
 namespace rm {
 
@@ -166,8 +167,8 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
     ok = out->close() && ok;
   }
   if (!ok) {
-    *error = "cannot encode '" + path.string() + "': " + (out ? out->geterror() : OIIO::geterror());
-    if (error->back() == ' ') error->pop_back();
+    const std::string why = one_line(out ? out->geterror() : OIIO::geterror());
+    *error = "cannot encode '" + path.string() + "'" + (why.empty() ? "" : ": " + why);
     return std::nullopt;
   }
   return write_whole_file(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()),

@@ -3,35 +3,16 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <sstream>
 
 #include "core/cube_map.h"
 #include "core/files.h"
+#include "core/one_line.h"
 #include "core/stderr_shut.h"
 #include "core/volume.h"
 
 namespace rm {
 
 namespace {
-
-// OIIO's message of a failed read is several lines (libpng's words, then its
-// own: "Read error: hit end of file\nPNG read error: IDAT: Read error: hit
-// end of file\nPNG library error"): one line of those that say something the
-// others do not.
-std::string one_line(const std::string& message) {
-  std::vector<std::string> lines;
-  std::istringstream in(message);
-  for (std::string line; std::getline(in, line);)
-    if (line.find_first_not_of(" \t") != std::string::npos) lines.push_back(line);
-  std::string joined;
-  for (size_t i = 0; i < lines.size(); ++i) {
-    bool said_elsewhere = false;  // by another line, or by an earlier copy of this one
-    for (size_t j = 0; j < lines.size() && !said_elsewhere; ++j)
-      said_elsewhere = j != i && (lines[j] == lines[i] ? j < i : lines[j].find(lines[i]) != std::string::npos);
-    if (!said_elsewhere) joined += (joined.empty() ? "" : "; ") + lines[i];
-  }
-  return joined;
-}
 
 // Opens `path` and checks its header: no pixel is read yet.
 std::unique_ptr<OIIO::ImageInput> open_checked(const std::filesystem::path& path, std::string* error) {
