@@ -1241,6 +1241,11 @@ int run_window(const WindowOptions& options) {
                         ? ", on the CPU: -D HW_PERFORMANCE=0 (-D HW_PERFORMANCE=1 draws what a desktop GPU gets)"
                         : "")
                 << '\n';
+    // The builder's warm-up reaches the window only through Mesa's cache.
+    const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    if (mesa_cache_disabled() && version && std::string(version).find("Mesa") != std::string::npos)
+      std::cerr << "raymarching: warning: Mesa's shader cache is off (MESA_SHADER_CACHE_DISABLE): the driver "
+                   "generates each new program's code in the window's first draw of it, which holds the window that long\n";
     WindowApp app(for_this, window);
     glfwSetWindowUserPointer(window, &app);
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) { app_of(w)->on_mouse_button(button, action, mods); });

@@ -90,13 +90,13 @@ def mean_colour(image):
     return colour, (int(size.group(1)), int(size.group(2))) if size else None
 
 
-def open_window(args, stdout_path, stderr_path, cwd):
+def open_window(args, stdout_path, stderr_path, cwd, env=None):
     """Starts the program (a window) with its output in files. An X server
     resets when its last client leaves, and a window opened in that moment
     fails with "Failed to open display" (seen in CI between two windows of
     one test): such a start is tried again, up to three times."""
     for attempt in range(3):
-        proc = subprocess.Popen(args, stdout=open(stdout_path, "w"), stderr=open(stderr_path, "w"), cwd=cwd)
+        proc = subprocess.Popen(args, stdout=open(stdout_path, "w"), stderr=open(stderr_path, "w"), cwd=cwd, env=env)
         try:
             proc.wait(timeout=2.0)
         except subprocess.TimeoutExpired:

@@ -25,7 +25,8 @@ a float knob's drag is number edits while it is held, no compile), which
 F12 records for `render`; a warning shows in a smaller line until dismissed.
 Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
-animated one, and so does an animated one while paused.
+animated one, and so does an animated one while paused. With Mesa's shader
+cache off, the window says once what that costs it.
 """
 import math
 import os
@@ -617,20 +618,37 @@ STILL = """void mainImage(out vec4 c, in vec2 f) {
 """
 
 
-def small_window(source, name):
+def small_window(source, name, env=None):
     """`source` saved as `name` in a new directory and opened in a 64x36
-    window with -v, shots going there: (work, scene, stderr path, stdout
-    path, process, window); window None (and a failed check) when none came."""
+    window with -v (and the environment `env`), shots going there: (work,
+    scene, stderr path, stdout path, process, window); window None (and a
+    failed check) when none came."""
     work = tempfile.mkdtemp(prefix="rm-e2e-small-")
     scene = os.path.join(work, name)
     with open(scene, "w") as f:
         f.write(source)
     err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
-    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work)
+    proc = open_window([BINARY, scene, "--size", "64x36", "--shot-dir", work, "-v"], out_path, err_path, work, env)
     window = first_frame_window(proc, name, err_path)
     if not window:
         check(f"{name} opens in the window", False, open(err_path).read())
     return work, scene, err_path, out_path, proc, window
+
+
+def mesa_cache_off_is_said():
+    """With Mesa's shader cache off, the builder's warm-up cannot reach the
+    window, whose first draw of each new program then holds it for the
+    driver's code generation: the window says so once, and only then."""
+    warning = "warning: Mesa's shader cache is off (MESA_SHADER_CACHE_DISABLE)"
+    for off in (True, False):
+        env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true") if off else None
+        _, _, err_path, _, proc, window = small_window(CONSTANT_B, "cache_off.frag" if off else "cache_on.frag", env)
+        if not window:
+            return
+        said = open(err_path).read().count(warning)
+        check("with Mesa's shader cache off the window says what it costs, once" if off
+              else "... and with it on, says nothing of it", said == (1 if off else 0), open(err_path).read()[-500:])
+        quit_with(proc, window, "q")
 
 
 def tweak_at_rest():
@@ -798,6 +816,7 @@ if __name__ == "__main__":
         knob_session()
         warning_session()
         idle_costs_nothing()
+        mesa_cache_off_is_said()
     finally:
         status = summary()
     sys.exit(status)
