@@ -176,18 +176,15 @@ SourceOptions SourceFlags::source() const {
     SourceOptions out;
     out.shaderlib_dir = shaderlib_dir();
     for (const auto& dir : includes) out.include_dirs.emplace_back(dir);
-    const auto is_name = [](const std::string& name) {
-      return !name.empty() && lexing::is_word_start(name[0]) && std::all_of(name.begin(), name.end(), lexing::is_word_char);
-    };
     for (const auto& d : defines) {
       const auto eq = d.find('=');
       Define def{d.substr(0, eq), eq == std::string::npos ? "" : d.substr(eq + 1)};
-      if (!is_name(def.name)) throw UsageError{"-D '" + d + "': '" + def.name + "' is not a macro name"};
+      if (const auto why = define_problem(def)) throw UsageError{"-D '" + printable(d) + "': " + *why};
       out.defines.push_back(def);
     }
     if (!quality.empty()) out.defines.push_back({"RM_QUALITY", preset_macro(quality)});
     for (const auto& name : undefines) {
-      if (!is_name(name)) throw UsageError{"-U '" + name + "': not a macro name"};
+      if (!lexing::is_name(name)) throw UsageError{"-U '" + printable(name) + "': not a macro name"};
       for (const Define& d : out.defines)
         if (d.name == name) {
           const bool from_quality = !quality.empty() && &d == &out.defines.back();  // pushed last, above

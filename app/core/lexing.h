@@ -14,6 +14,13 @@ constexpr bool is_space(char c) { return is_blank(c) || c == '\n'; }
 constexpr bool is_word_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
 constexpr bool is_word_char(char c) { return is_word_start(c) || is_digit(c); }
+// Whether `text` is one word: a macro's or a variable's name.
+constexpr bool is_name(std::string_view text) {
+  if (text.empty() || !is_word_start(text[0])) return false;
+  for (char c : text)
+    if (!is_word_char(c)) return false;
+  return true;
+}
 
 // The first position at or after `at` that is not a blank.
 size_t skip_blanks(std::string_view text, size_t at);

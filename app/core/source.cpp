@@ -12,6 +12,13 @@
 
 namespace rm {
 
+std::optional<std::string> define_problem(const Define& d) {
+  if (!lexing::is_name(d.name)) return "'" + printable(d.name) + "' is not a macro name";
+  // The value follows the name on the #define line the host writes.
+  if (d.value.find_first_of("\n\r") != std::string::npos) return "its value is not one line";
+  return std::nullopt;
+}
+
 namespace {
 
 constexpr int kMaxIncludeDepth = 256;

@@ -44,6 +44,10 @@ struct Define {
   std::string value;  // empty means "1", as -DNAME does in a compiler
   bool operator==(const Define&) const = default;
 };
+// Why `d` cannot be a -D ("'1X' is not a macro name", "its value is not one
+// line"); nullopt when it can. A take's defines are checked as the command
+// line's are.
+std::optional<std::string> define_problem(const Define& d);
 
 struct SourceOptions {
   std::vector<fs::path> include_dirs;  // -I, searched after the including file's dir

@@ -14,6 +14,7 @@
 #include "core/capture.h"
 #include "core/files.h"
 #include "core/json_depth.h"
+#include "core/lexing.h"
 
 namespace rm {
 
@@ -231,12 +232,22 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     for (const auto& dir : field<json>(doc, "include_dirs", json::array()))
       take.include_dirs.push_back(resolved_path(dir.get<std::string>(), folder));
     take.undefines = field<std::vector<std::string>>(doc, "undefines", {});
+    for (const std::string& name : take.undefines)
+      if (!lexing::is_name(name)) {
+        *error = where + "-U '" + printable(name) + "': not a macro name";
+        return std::nullopt;
+      }
     take.date = field<std::string>(doc, "date", "");
     for (const auto& e : field<json>(doc, "events", json::array())) {
       TakeEvent event;
       event.frame = int_of(e.at("frame"));
-      for (const auto& d : field<json>(e, "defines", json::array()))
+      for (const auto& d : field<json>(e, "defines", json::array())) {
         event.defines.push_back({d.at(0).get<std::string>(), d.at(1).get<std::string>()});
+        if (const auto why = define_problem(event.defines.back())) {
+          *error = where + "a -D of frame " + std::to_string(event.frame) + ": " + *why;
+          return std::nullopt;
+        }
+      }
       event.hashes = field<std::map<std::string, std::string>>(e, "hashes", {});
       take.events.push_back(std::move(event));
     }

@@ -122,6 +122,9 @@ TEST_F(Cli, RenderUndefinesAScenesOwnMacroAndRecordsIt) {
   test::Outcome bad = run("render " + scene + " -o " + exr + " -U 2x");
   EXPECT_EQ(bad.status, 2);
   EXPECT_EQ(bad.err, "raymarching: error: -U '2x': not a macro name\n");
+  bad = run("render " + scene + " -o " + exr + " -D \"$(printf 'AA=1\\n#error x')\"");  // each -D is one line of the source
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "raymarching: error: -D 'AA=1\\x0a#error x': its value is not one line\n");
   bad = run("render " + scene + " -o " + exr + " -D AA=2 -U AA");
   EXPECT_EQ(bad.status, 2);
   EXPECT_EQ(bad.err, "raymarching: error: -U AA: -D gives AA a value; give one of them\n");

@@ -157,6 +157,16 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
             std::string::npos);
   EXPECT_NE(error_of(frame + "\"f\": 0, \"r\": [100000, 2]}]}").find("frame 0's window is 100000x2, over 16384"),
             std::string::npos);
+  // A take's -D and -U are checked as the command line's: each becomes a line of the source.
+  const std::string head = "{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": [{\"w\": 0, \"t\": 0, \"f\": 0, "
+                           "\"r\": [2, 2]}], ";
+  EXPECT_NE(error_of(head + "\"events\": [{\"frame\": 0, \"defines\": [[\"A\\n#error x\", \"1\"]]}]}")
+                .find("a -D of frame 0: 'A\\x0a#error x' is not a macro name"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "\"events\": [{\"frame\": 0, \"defines\": [[\"A\", \"1\\n#error x\"]]}]}")
+                .find("a -D of frame 0: its value is not one line"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "\"undefines\": [\"2x\"]}").find("-U '2x': not a macro name"), std::string::npos);
   const std::string deep = "{\"raymarching_take\": 1, \"scene\": \"s.frag\",\n \"channels\": " + std::string(1000000, '[');
   EXPECT_EQ(error_of(deep + std::string(1000000, ']') + "}"),
             "take '" + (dir_ / "bad.take.json").string() + "': at line 2, column 77: arrays and objects nested deeper "
