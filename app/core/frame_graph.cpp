@@ -134,7 +134,7 @@ std::map<fs::path, FrameGraph::PassState> FrameGraph::pass_states(const Project&
   std::map<fs::path, PassState> out;
   for (size_t i = 0; i < project.passes().size(); ++i) {
     const Pass& pass = project.passes()[i];
-    out[pass.file] = {pass.is_image ? RenderTarget::kFormat : format_of(pass.cube), inputs_of(project, i)};
+    out[pass.file] = {pass.is_image ? RenderTarget::kFormat : format_of(pass.cube), inputs_of(project, i), pass.channels};
   }
   return out;
 }

@@ -95,6 +95,7 @@ class FrameGraph {
   struct PassState {
     GLenum format = RenderTarget::kFormat;
     ChannelInputs channels;
+    std::array<ChannelSpec, 4> specs;  // what the channels were bound for
   };
   std::map<fs::path, PassState> pass_states(const Project& project) const;
   // A PassState for a pass the graph holds nothing for yet (a new pass, or

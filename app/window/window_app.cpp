@@ -258,18 +258,22 @@ class WindowApp {
   }
 
   // Each new program is drawn once into its pass's format, with what the
-  // pass reads now; a new pass with textures like those it will read.
+  // pass reads now where its channels are bound as before, and elsewhere
+  // (a new pass, a channel the save changed) with textures like those it
+  // will read.
   OnBuilt warm_up_hook() {
     return [this, states = graph_.pass_states(project_)](const fs::path& pass, const Program& program,
                                                          const Source& source) {
       if (!warm_up_) return;
-      const auto state = states.find(pass);
-      if (state != states.end()) {
-        warm_up(program, state->second.format, state->second.channels);
-      } else {
-        const FrameGraph::StandIns stand_ins = graph_.stand_ins(source.cubemap, project_.channels_of(pass, source));
-        warm_up(program, stand_ins.state.format, stand_ins.state.channels);
+      const std::array<ChannelSpec, 4> channels = project_.channels_of(pass, source);
+      FrameGraph::StandIns stand_ins = graph_.stand_ins(source.cubemap, channels);
+      FrameGraph::PassState& state = stand_ins.state;
+      if (const auto now = states.find(pass); now != states.end()) {
+        state.format = now->second.format;
+        for (size_t c = 0; c < 4; ++c)
+          if (now->second.specs[c] == channels[c]) state.channels[c] = now->second.channels[c];
       }
+      warm_up(program, state.format, state.channels);
     };
   }
 

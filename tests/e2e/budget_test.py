@@ -12,7 +12,8 @@ or while the first program compiles, quits within 1 s; with --refine 0 and
 the interface hidden, the window's first draw of a new program does not
 compile it again (it drew straight into the window's format, which the
 builder's warm-up did not match), nor that of each pass of a first
-program, whose warm-up stands in textures like those the pass will read;
+program, or of a channel a save binds anew, whose warm-up stands in
+textures like those the pass will read;
 a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
@@ -437,6 +438,30 @@ def no_compile_in_the_window_for_new_passes(work):
     quit_with_q(proc, window)
 
 
+def no_compile_in_the_window_for_a_changed_channel(work):
+    # A save that binds a channel anew (here the keyboard, where nothing
+    # was) was warmed up with what the pass read before: the window's first
+    # draw generated its code again.
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
+    scene, proc, err, _, window = start(work, "rebound.frag", SLOW_TO_BUILD.replace("SEED", seed),
+                                        "a window slow to compile opens", "--no-ui", "--target-fps", "0", timeout=60)
+    if not window:
+        return
+    save_by_rename(scene, "#pragma channel0 keyboard\n" + SLOW_TO_BUILD.replace("SEED", seed).replace(
+        "c = vec4(uv,", "c = texture(iChannel0, uv) + vec4(uv,"))
+    shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=60)
+    log = open(err).read()
+    warm = re.search(r"reload ok generation 2 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms\)", log)
+    first = re.search(r"first draw of generation 2: a \d+x\d+ tile, ([\d.]+) ms", log)
+    check("... and a save that reads the keyboard is shown", shown and warm and first, log[-800:])
+    if shown and warm and first:
+        print(f"     the builder's warm-up draw {float(warm.group(1)):.0f} ms, "
+              f"the window's first draw {float(first.group(1)):.0f} ms")
+        check("the window's first draw of a pass with a channel bound anew does not compile it again",
+              float(first.group(1)) < float(warm.group(1)) / 4, f"{warm.group(1)} {first.group(1)}")
+    quit_with_q(proc, window)
+
+
 def light_first_picture_kept(work):
     # A light animated scene well within budget: its first picture is not
     # dropped for a smaller one. A small tile's time is mostly the draw's own:
@@ -582,6 +607,7 @@ if __name__ == "__main__":
         quit_while_the_first_program_builds(work)
         no_compile_in_the_window(work)
         no_compile_in_the_window_for_new_passes(work)
+        no_compile_in_the_window_for_a_changed_channel(work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
