@@ -593,9 +593,8 @@ class WindowApp {
     // Tiles of one budget, from the cost per pixel the last pictures
     // measured (unknown after a reload): a picture the controller sized to
     // fit (under kHoldAt of it, which leaves room for the present) is one tile.
-    const double per_pixel = !budget_on ? 1e-12 : measured_per_pixel_ms({width, height});
-    const double tile_ms = budget_on ? budget_.budget_ms() : 1e12;
-    drawing_.emplace(Picture{in, window, size, scale, !moving, TilePlan(size, tile_ms, per_pixel),
+    drawing_.emplace(Picture{in, window, size, scale, !moving,
+                             TilePlan(size, slice_ms(), measured_per_pixel_ms({width, height})),
                              (steady_ns() - start) / 1e6});
     drawing_->next_buffer = advance ? 0 : project_.passes().size() - 1;
     if (sample == 0) samples_ = 0;
@@ -614,6 +613,13 @@ class WindowApp {
   // What a pixel of the current program costs at full size, as the budget
   // measured it for a window of `window` pixels; 0 before its first draw
   // (a tile plan then starts with its smallest tile).
+  // How long the window draws before it reads input again: the frame
+  // budget, or with the budget off (--target-fps 0) kSliceWithoutBudgetMs,
+  // so that no shader freezes the window even then: its pictures are at
+  // full size, and a heavy one is drawn in tiles.
+  static constexpr double kSliceWithoutBudgetMs = 100;
+  double slice_ms() const { return budget_.budget_ms() > 0 ? budget_.budget_ms() : kSliceWithoutBudgetMs; }
+
   double measured_per_pixel_ms(glm::ivec2 window) const {
     return program_drawn_ ? budget_.full_frame_ms() / (double(window.x) * window.y) : 0.0;
   }
@@ -653,7 +659,6 @@ class WindowApp {
   void continue_picture() {
     Picture& p = *drawing_;
     const long long slice_start = steady_ns();
-    const double slice_ms = budget_.budget_ms() > 0 ? budget_.budget_ms() : 1e12;
     do {
       if (buffer_tile()) {
         if (!drawing_) return;  // the watchdog stopped it
@@ -681,7 +686,7 @@ class WindowApp {
                   << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";
       program_drawn_ = true;
       if (!first_draw && replan(ms)) return;
-    } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms);
+    } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms());
     if (p.plan.done()) finish_picture();
   }
 
@@ -702,10 +707,8 @@ class WindowApp {
           continue;
         }
         const glm::ivec2 size = graph_.pass_size(project_, index, p.size);
-        const bool whole = budget_.budget_ms() <= 0;
         const auto cost = buffer_cost_.find(file);
-        p.buffer_plan.emplace(size, whole ? 1e12 : budget_.budget_ms(),
-                              whole ? 1e-12 : cost == buffer_cost_.end() ? 0.0 : cost->second);
+        p.buffer_plan.emplace(size, slice_ms(), cost == buffer_cost_.end() ? 0.0 : cost->second);
       }
       const glm::ivec4 tile = p.buffer_plan->next();
       const bool first_of_pass = p.buffer_plan->drawn_ms() == 0 && !buffer_cost_.count(file);
@@ -934,16 +937,13 @@ class WindowApp {
     Metadata metadata = shot_metadata(in, refined ? samples_ : 1, taken);
     if (refined) {
       save_shot(picture_.read(), options_.shot_dir / name, metadata);
-    } else if (budget_.budget_ms() > 0) {
+    } else {
       // Drawn in tiles between the window's own (continue_shot), from the
       // cost per pixel the window measured.
       shots_wait_for_build_ = waiting_for_build();
-      shots_.emplace_back(in, size, renderer_.max_tile(), budget_.budget_ms(),
+      shots_.emplace_back(in, size, renderer_.max_tile(), slice_ms(),
                           measured_per_pixel_ms(glm::ivec2(inputs_.resolution)), options_.shot_dir / name,
                           std::move(metadata));
-    } else {  // with the budget off, as the window's own pictures: at once
-      save_shot(graph_.render_image(project_, in, size), options_.shot_dir / name, metadata);
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
   }
 

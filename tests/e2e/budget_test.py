@@ -3,7 +3,8 @@
 Run as: xvfb-run -a python3 budget_test.py RAYMARCHING
 
 Checks: a shader of half a million loop steps per pixel (about half a
-minute a picture here) is drawn in tiles, and Q quits within 1 s of the key;
+minute a picture here) is drawn in tiles, with the budget on or off, and Q
+quits within 1 s of the key;
 a save that replaces it shows within 1 s; a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
@@ -157,9 +158,13 @@ def quit_with_q(proc, window):
     return status, time.monotonic() - pressed
 
 
-def heavy_session(work):
+def heavy_session(work, *args):
+    # With the budget off (--target-fps 0) as well: its pictures are at full
+    # size, but a heavy one is still drawn in tiles (it was drawn whole, and
+    # Q waited for the picture).
+    said = " with the budget off" if args else ""
     scene, proc, err, _, window = start(work, "heavy.frag", HEAVY,
-                                        "a heavy shader's window opens and shows its first tiles")
+                                        f"a heavy shader's window opens{said} and shows its first tiles", *args)
     if not window:
         return
     # Tiles keep coming: the title says so, and the picture is not finished.
@@ -169,7 +174,7 @@ def heavy_session(work):
     time.sleep(1.0)
     status, took = quit_with_q(proc, window)
     print(f"     Q to exit: {took:.3f} s")
-    check("Q quits a heavy shader within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
+    check(f"Q quits a heavy shader{said} within 1 s", status == 0 and took < 1.0, f"status {status}, {took:.3f} s")
     check("... before its picture was finished", "picture 320x180" not in open(err).read(), open(err).read()[-500:])
 
 
@@ -596,6 +601,7 @@ if __name__ == "__main__":
     work = tempfile.mkdtemp(prefix="rm-e2e-budget-")
     try:
         heavy_session(work)
+        heavy_session(work, "--target-fps", "0")
         heavy_buffer_scaled(work)
         heavy_animated_replanned(work)
         tiled_feedback(work)
