@@ -21,7 +21,7 @@ WindowCommand::WindowCommand(CLI::App& app) {
   app.add_flag("--controls", controls_, "Start with the controls panel open");
   app.add_option("--target-fps", target_fps_, "Frame budget: a changing picture is drawn at a lower resolution "
                                               "(down to 1/8 per axis), and a heavy one in tiles, to hold this rate; "
-                                              "0 turns it off")
+                                              "0 turns it off (full size, a heavy picture still in tiles of 100 ms)")
       ->type_name("F")->check(finite_between(0.0, 1000.0));
   app.add_option("--tile-limit", tile_limit_, "A shader whose smallest tile takes longer is reported too slow and "
                                               "no longer drawn, until the next save")
