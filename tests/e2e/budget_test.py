@@ -387,6 +387,25 @@ def quit_while_the_first_program_builds(work):
           and "presented generation 1" not in log, f"status {status}, {took:.3f} s: {log[-500:]}")
 
 
+def no_compile_in_the_window_twice(name, attempt, work):
+    """Checks `name`: that attempt(work), which returns (ok, detail), or None
+    when it did not get that far (and said why), finds the window's first
+    draws of new programs without a compile. Mesa writes its shader cache
+    on a thread of its own, so the program the builder warmed up last,
+    drawn at once, can miss the entry under load (seen once in CI: a buffer
+    drawn first in 857 ms, the image it feeds in 4): one more try, with
+    new programs. A window that compiles them every time fails both."""
+    for tries in (1, 2):
+        result = attempt(work)
+        if result is None:
+            return
+        ok, detail = result
+        if ok or tries == 2:
+            check(name, ok, detail)
+            return
+        print(f"     once more, Mesa's cache may have been written late: {detail}")
+
+
 def no_compile_in_the_window(work):
     # With --refine 0 and the interface hidden, the window drew each picture
     # straight into its own framebuffer, whose format the builder's warm-up
@@ -409,9 +428,8 @@ def no_compile_in_the_window(work):
         for (generation, warm), (_, draw) in zip(built, first):
             print(f"     generation {generation}: the builder's warm-up draw {float(warm):.0f} ms, "
                   f"the window's first draw {float(draw):.0f} ms")
-        check("the window's first draws do not compile the program again (a quarter of the warm-up's time)",
-              all(float(draw) < float(warm) / 4 for (_, warm), (_, draw) in zip(built, first)),
-              f"{built} {first}")
+        quit_with_q(proc, window)
+        return all(float(draw) < float(warm) / 4 for (_, warm), (_, draw) in zip(built, first)), f"{built} {first}"
     quit_with_q(proc, window)
 
 
@@ -438,8 +456,8 @@ def no_compile_in_the_window_for_new_passes(work):
     if warm and len(first) == 2:
         print(f"     the builder's warm-up draws {float(warm.group(1)):.0f} ms; the window's first draws "
               f"{', '.join(f'{float(ms):.0f}' for ms in first)} ms")
-        check("the window's first draws of new passes do not compile them again (an eighth of the warm-up's time)",
-              all(float(ms) < float(warm.group(1)) / 8 for ms in first), f"{warm.group(1)} {first}")
+        quit_with_q(proc, window)
+        return all(float(ms) < float(warm.group(1)) / 8 for ms in first), f"{warm.group(1)} {first}"
     quit_with_q(proc, window)
 
 
@@ -462,8 +480,8 @@ def no_compile_in_the_window_for_a_changed_channel(work):
     if shown and warm and first:
         print(f"     the builder's warm-up draw {float(warm.group(1)):.0f} ms, "
               f"the window's first draw {float(first.group(1)):.0f} ms")
-        check("the window's first draw of a pass with a channel bound anew does not compile it again",
-              float(first.group(1)) < float(warm.group(1)) / 4, f"{warm.group(1)} {first.group(1)}")
+        quit_with_q(proc, window)
+        return float(first.group(1)) < float(warm.group(1)) / 4, f"{warm.group(1)} {first.group(1)}"
     quit_with_q(proc, window)
 
 
@@ -611,9 +629,15 @@ if __name__ == "__main__":
         keeps_drawing_while_building(work)
         quit_during_a_build(work)
         quit_while_the_first_program_builds(work)
-        no_compile_in_the_window(work)
-        no_compile_in_the_window_for_new_passes(work)
-        no_compile_in_the_window_for_a_changed_channel(work)
+        no_compile_in_the_window_twice(
+            "the window's first draws do not compile the program again (a quarter of the warm-up's time)",
+            no_compile_in_the_window, work)
+        no_compile_in_the_window_twice(
+            "the window's first draws of new passes do not compile them again (an eighth of the warm-up's time)",
+            no_compile_in_the_window_for_new_passes, work)
+        no_compile_in_the_window_twice(
+            "the window's first draw of a pass with a channel bound anew does not compile it again",
+            no_compile_in_the_window_for_a_changed_channel, work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
