@@ -22,6 +22,18 @@ SourceOptions with_forced(SourceOptions options, const std::vector<std::string>&
   return options;
 }
 
+// The passes a walk reached (the image first) in the order they are drawn:
+// the stand-ins for missing media first, then buffers in the order of their
+// file names, then cube passes, then the image: Shadertoy's A, B, C, D,
+// Cube A, Image.
+std::vector<fs::path> draw_order(const std::vector<fs::path>& reached, const std::map<fs::path, int>& cube_size) {
+  std::vector<fs::path> passes(reached.begin() + 1, reached.end());
+  auto order = [&](const fs::path& p) { return std::make_tuple(!is_media_stand_in(p), cube_size.count(p), p.filename(), p); };
+  std::sort(passes.begin(), passes.end(), [&](const fs::path& a, const fs::path& b) { return order(a) < order(b); });
+  passes.push_back(reached.front());
+  return passes;
+}
+
 }  // namespace
 
 Project::Project(fs::path image, SourceOptions options, FileSystem files, std::array<fs::path, 4> channels)
@@ -146,7 +158,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
       image_path_,
       [&](const fs::path& file) -> const Source* {
         Scene& scene = scene_for(file);
-        const ReloadStatus status = scene.prepare(on_built, cancelled);
+        const ReloadStatus status = scene.prepare(cancelled);
         times_ += scene.times();
         if (status == ReloadStatus::Swapped) swapped.push_back(file);
         const Diagnostics& diags = scene.latest_diagnostics();
@@ -171,6 +183,14 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
     return ReloadStatus::Failed;
   }
   if (!changed && same_passes()) return ReloadStatus::Unchanged;
+  // Warmed up in the order they are drawn: Mesa writes the code it
+  // generates to its cache on a thread of its own, and the window finds it
+  // there only once written, so the pass it draws last is warmed last.
+  for (const fs::path& file : draw_order(reached, walk.cube_size)) {
+    Scene& scene = scene_for(file);
+    scene.warm_up(on_built);
+    times_.warm += scene.times().warm;
+  }
   pending_ = PendingSwap{walk.reached, walk.cube_size, std::move(swapped)};
   return ReloadStatus::Swapped;
 }
@@ -202,15 +222,8 @@ void Project::commit() {
   for (const fs::path& file : reached) scene_for(file).commit();
   for (auto it = scenes_.begin(); it != scenes_.end();)
     it = std::find(reached.begin(), reached.end(), it->first) == reached.end() ? scenes_.erase(it) : std::next(it);
-  // The stand-ins for missing media first, then buffers in the order of
-  // their file names, then cube passes, then the image: Shadertoy's A, B,
-  // C, D, Cube A, Image.
-  std::vector<fs::path> buffers(reached.begin() + 1, reached.end());
-  auto order = [&](const fs::path& p) { return std::make_tuple(!is_media_stand_in(p), cube_size.count(p), p.filename(), p); };
-  std::sort(buffers.begin(), buffers.end(), [&](const fs::path& a, const fs::path& b) { return order(a) < order(b); });
-  buffers.push_back(image_path_);
   passes_.clear();
-  for (const fs::path& file : buffers) {
+  for (const fs::path& file : draw_order(reached, cube_size)) {
     Pass pass;
     pass.file = file;
     pass.scene = scenes_.at(file).get();

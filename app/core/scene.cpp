@@ -42,7 +42,7 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled) {
+ReloadStatus Scene::prepare(const Cancelled& cancelled) {
   auto put_off = [&] {
     if (!showing_twin_ || !cancelled || !cancelled()) return false;
     attempted_ = false;  // the next prepare() builds it
@@ -104,15 +104,19 @@ ReloadStatus Scene::prepare(const OnBuilt& on_built, const Cancelled& cancelled)
     return ReloadStatus::Failed;
   }
   if (put_off()) return ReloadStatus::Unchanged;
-  if (on_built) {
-    start = std::chrono::steady_clock::now();
-    on_built(path_, *built, source);
-    times_.warm = ms_since(start);
-  }
   std::string text = source.text;
   pending_ = Built{std::move(text), std::move(*built), std::move(source), std::move(active)};
+  pending_is_new_ = true;
   pending_diagnostics_ = std::move(diags);  // warnings only
   return ReloadStatus::Swapped;
+}
+
+void Scene::warm_up(const OnBuilt& on_built) {
+  if (!pending_ || !pending_is_new_ || !on_built) return;
+  pending_is_new_ = false;
+  const auto start = std::chrono::steady_clock::now();
+  on_built(path_, pending_->program, pending_->source);
+  times_.warm = ms_since(start);
 }
 
 void Scene::commit() {
@@ -145,6 +149,7 @@ void Scene::commit() {
 }
 
 void Scene::discard() {
+  pending_is_new_ = false;
   if (pending_tweak_) {
     pending_tweak_.reset();
     attempted_ = false;

@@ -26,7 +26,7 @@ struct ReloadTimes {
 };
 
 // Called with each program a reload compiled anew (not one from the cache),
-// the pass file it belongs to, and its source.
+// the pass file it belongs to, and its source: the window's warm-up.
 using OnBuilt = std::function<void(const fs::path& pass, const Program&, const Source&)>;
 // Asked between a build's stages: true puts the build off (a background one).
 using Cancelled = std::function<bool()>;
@@ -57,7 +57,11 @@ class Scene {
   // may run on another thread whose GL context shares this one's objects;
   // The exact build of a tweak (only it: the picture on screen is right)
   // is put off where `cancelled` says so, before each stage, as Unchanged.
-  ReloadStatus prepare(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  ReloadStatus prepare(const Cancelled& cancelled = {});
+  // Hands the program prepare() compiled anew, if it did, to `on_built`
+  // (timed as times().warm). Apart from prepare() so that a project warms
+  // its passes up in the order it draws them.
+  void warm_up(const OnBuilt& on_built);
   void commit();
   void discard();
   // The source of the prepared program if there is one, else the running one's.
@@ -132,6 +136,7 @@ class Scene {
   static constexpr size_t kCacheSize = 8;
   std::vector<Built> cache_;
   std::optional<Built> pending_;  // prepared, not yet committed
+  bool pending_is_new_ = false;   // compiled by the latest prepare(), not warmed up yet
   struct Twin {
     LiftScope scope;
     std::string skeleton;  // of the texts it can show (LiftedLiterals)

@@ -255,6 +255,23 @@ TEST_F(Passes, APreparedReloadLeavesTheRunningGraphDrawingUntilItIsCommitted) {
   EXPECT_EQ(at(frame(3), 1, 1)[0], 1.0f);
 }
 
+// Mesa writes the code a warm-up generates to its cache on a thread of its
+// own: the pass the window draws last must be the one warmed last.
+TEST_F(Passes, NewProgramsAreWarmedUpInTheOrderTheyAreDrawn) {
+  write_file(dir_ / "buffer_b.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0); }\n");
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 \"buffer_b.frag\"\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n");
+  write_file(dir_ / "image.frag", kShowChannel0);
+  Project project(dir_ / "image.frag", SourceOptions{});
+  std::vector<fs::path> warmed;
+  auto warm = [&](const fs::path& pass, const Program&, const Source&) { warmed.push_back(pass.filename()); };
+  ASSERT_EQ(project.prepare(warm), ReloadStatus::Swapped) << join(project.diagnostics());
+  project.commit();
+  EXPECT_EQ(warmed, (std::vector<fs::path>{"buffer_a.frag", "buffer_b.frag", "image.frag"}));
+  ASSERT_EQ(project.passes().size(), 3u);
+  for (size_t i = 0; i < 3; ++i) EXPECT_EQ(project.passes()[i].file.filename(), warmed[i]) << "drawn " << i;
+}
+
 TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTime); }\n");
   write_file(dir_ / "image.frag", kShowChannel0);

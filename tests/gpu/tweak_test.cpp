@@ -181,18 +181,18 @@ TEST_F(TweakGpu, ATweaksExactBuildIsPutOffWhenCancelledAndOnlyIt) {
   ASSERT_TRUE(scene.tweaked());
   for (int stage = 1; stage <= 3; ++stage) {  // before glslang, the driver, the warm-up
     int asked = 0;
-    EXPECT_EQ(scene.prepare({}, [&] { return ++asked >= stage; }), ReloadStatus::Unchanged) << stage;
+    EXPECT_EQ(scene.prepare([&] { return ++asked >= stage; }), ReloadStatus::Unchanged) << stage;
     EXPECT_EQ(asked, stage);
     EXPECT_TRUE(scene.tweaked());
     EXPECT_EQ(scene.generation(), 2);
   }
-  ASSERT_EQ(scene.prepare({}, [] { return false; }), ReloadStatus::Swapped);
+  ASSERT_EQ(scene.prepare([] { return false; }), ReloadStatus::Swapped);
   scene.commit();
   EXPECT_FALSE(scene.tweaked());
   EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.375f, 1e-6f);
   // A build that is not a tweak's is never put off.
   write_file(path, with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"));
-  EXPECT_EQ(scene.prepare({}, [] { return true; }), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.prepare([] { return true; }), ReloadStatus::Swapped);
 }
 
 TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak) {
