@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <variant>
 
 #include "core/cube_map.h"
 #include "core/files.h"
@@ -114,58 +115,46 @@ int mip_levels(int width, int height) {
   return levels;
 }
 
-std::optional<ImageTextures::Entry> flat_texture(const ChannelSpec& spec, std::string* error) {
-  auto file_image = load_channel_image(spec.path, error);
-  if (!file_image) return std::nullopt;
-  // GL's row 0 is the bottom: a file read right side up is flipped for it.
-  const Image image = spec.sampler.vflip ? file_image->flipped() : std::move(*file_image);
+// What a channel file reads as before it is a texture: a flat image, a
+// cube map's faces or a volume, or nothing and the error.
+struct DecodedChannel {
+  std::vector<std::filesystem::file_time_type> stamps;  // of its file (or six face files) before reading
+  std::variant<std::monostate, Image, CubeFaces, Volume> pixels;
+  std::string error;
+};
+
+// Uploads what decode_channel() read, with its mip levels.
+ImageTextures::Entry upload(const ChannelSpec& spec, DecodedChannel decoded) {
   ImageTextures::Entry entry;
-  entry.texture = gl::make_texture(GL_TEXTURE_2D);
-  glTextureStorage2D(entry.texture.get(), mip_levels(image.width, image.height), GL_RGBA16F, image.width, image.height);
-  glTextureSubImage2D(entry.texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
+  entry.stamps = std::move(decoded.stamps);
+  if (auto* file_image = std::get_if<Image>(&decoded.pixels)) {
+    // GL's row 0 is the bottom: a file read right side up is flipped for it.
+    const Image image = spec.sampler.vflip ? file_image->flipped() : std::move(*file_image);
+    entry.texture = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(entry.texture.get(), mip_levels(image.width, image.height), GL_RGBA16F, image.width,
+                       image.height);
+    glTextureSubImage2D(entry.texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
+    entry.resolution = glm::vec3(image.width, image.height, 1.0f);
+  } else if (const auto* cube = std::get_if<CubeFaces>(&decoded.pixels)) {
+    entry.target = GL_TEXTURE_CUBE_MAP;
+    entry.texture = gl::make_texture(GL_TEXTURE_CUBE_MAP);
+    glTextureStorage2D(entry.texture.get(), mip_levels(cube->size, cube->size), GL_RGBA16F, cube->size, cube->size);
+    for (int f = 0; f < 6; ++f)  // faces upload unflipped: their first row is GL's t = 0
+      glTextureSubImage3D(entry.texture.get(), 0, 0, 0, f, cube->size, cube->size, 1, GL_RGBA, GL_FLOAT,
+                          cube->faces[static_cast<size_t>(f)].rgba.data());
+    entry.resolution = glm::vec3(cube->size, cube->size, 1.0f);
+  } else {
+    const Volume& volume = std::get<Volume>(decoded.pixels);
+    const glm::ivec3 n = volume.size;
+    entry.target = GL_TEXTURE_3D;
+    entry.texture = gl::make_texture(GL_TEXTURE_3D);
+    glTextureStorage3D(entry.texture.get(), mip_levels(std::max({n.x, n.y, n.z}), 1), GL_RGBA16F, n.x, n.y, n.z);
+    glTextureSubImage3D(entry.texture.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RGBA, GL_FLOAT, volume.rgba.data());
+    entry.resolution = glm::vec3(n);
+  }
   glGenerateTextureMipmap(entry.texture.get());
-  entry.resolution = glm::vec3(image.width, image.height, 1.0f);
   return entry;
 }
-
-std::optional<ImageTextures::Entry> cube_texture(const ChannelSpec& spec, std::string* error) {
-  auto cube = load_cube_map(spec.path, error);
-  if (!cube) return std::nullopt;
-  ImageTextures::Entry entry;
-  entry.target = GL_TEXTURE_CUBE_MAP;
-  entry.texture = gl::make_texture(GL_TEXTURE_CUBE_MAP);
-  glTextureStorage2D(entry.texture.get(), mip_levels(cube->size, cube->size), GL_RGBA16F, cube->size, cube->size);
-  for (int f = 0; f < 6; ++f)  // faces upload unflipped: their first row is GL's t = 0
-    glTextureSubImage3D(entry.texture.get(), 0, 0, 0, f, cube->size, cube->size, 1, GL_RGBA, GL_FLOAT,
-                        cube->faces[static_cast<size_t>(f)].rgba.data());
-  glGenerateTextureMipmap(entry.texture.get());
-  entry.resolution = glm::vec3(cube->size, cube->size, 1.0f);
-  return entry;
-}
-
-std::optional<ImageTextures::Entry> volume_texture(const ChannelSpec& spec, std::string* error) {
-  auto volume = load_volume(spec.path, error);
-  if (!volume) return std::nullopt;
-  const glm::ivec3 n = volume->size;
-  ImageTextures::Entry entry;
-  entry.target = GL_TEXTURE_3D;
-  entry.texture = gl::make_texture(GL_TEXTURE_3D);
-  int levels = 1;
-  for (int size = std::max({n.x, n.y, n.z}); size > 1; size /= 2) ++levels;
-  glTextureStorage3D(entry.texture.get(), levels, GL_RGBA16F, n.x, n.y, n.z);
-  glTextureSubImage3D(entry.texture.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RGBA, GL_FLOAT, volume->rgba.data());
-  glGenerateTextureMipmap(entry.texture.get());
-  entry.resolution = glm::vec3(n);
-  return entry;
-}
-
-}  // namespace
-
-ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
-  return {spec.path, spec.shape, spec.shape == ChannelSpec::Shape::Flat && spec.sampler.vflip};
-}
-
-namespace {
 
 // When the file (or each face file of a cube map) was last written.
 std::vector<std::filesystem::file_time_type> stamps_of(const ChannelSpec& spec) {
@@ -182,21 +171,74 @@ std::vector<std::filesystem::file_time_type> stamps_of(const ChannelSpec& spec) 
   return stamps;
 }
 
+DecodedChannel decode_channel(const ChannelSpec& spec) {
+  DecodedChannel out;
+  out.stamps = stamps_of(spec);
+  std::string error;
+  switch (spec.shape) {
+    case ChannelSpec::Shape::Cube:
+      if (auto cube = load_cube_map(spec.path, &error)) out.pixels = std::move(*cube);
+      break;
+    case ChannelSpec::Shape::Volume:
+      if (auto volume = load_volume(spec.path, &error)) out.pixels = std::move(*volume);
+      break;
+    default:
+      if (auto image = load_channel_image(spec.path, &error)) out.pixels = std::move(*image);
+  }
+  out.error = std::move(error);
+  return out;
+}
+
 }  // namespace
+
+ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
+  return {spec.path, spec.shape, spec.shape == ChannelSpec::Shape::Flat && spec.sampler.vflip};
+}
+
+std::optional<ImageTextures::Entry> ImageTextures::read(const ChannelSpec& spec, std::string* error) {
+  DecodedChannel decoded = decode_channel(spec);
+  if (std::holds_alternative<std::monostate>(decoded.pixels)) {
+    *error = decoded.error;
+    return std::nullopt;
+  }
+  return upload(spec, std::move(decoded));
+}
 
 const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::string* error, bool* reread) {
   const Key key = key_of(spec);
-  std::vector<std::filesystem::file_time_type> stamps = stamps_of(spec);
+  const std::vector<std::filesystem::file_time_type> stamps = stamps_of(spec);
   auto it = entries_.find(key);
   if (it != entries_.end() && it->second.stamps == stamps) return &it->second;
-  std::optional<Entry> entry = spec.shape == ChannelSpec::Shape::Cube     ? cube_texture(spec, error)
-                               : spec.shape == ChannelSpec::Shape::Volume ? volume_texture(spec, error)
-                                                                          : flat_texture(spec, error);
+  std::optional<Entry> entry;
+  if (auto ready = handed_over_.find(key); ready != handed_over_.end() && ready->second.stamps == stamps)
+    entry = std::move(ready->second);
+  else entry = read(spec, error);
+  handed_over_.erase(key);
   if (!entry) return it != entries_.end() ? &it->second : nullptr;  // a bad save keeps the last good image
   if (reread) *reread = true;
-  entry->stamps = std::move(stamps);
   entries_.insert_or_assign(key, std::move(*entry));
   return &entries_.at(key);
+}
+
+std::vector<ChannelSpec> ImageTextures::stale(const std::vector<ChannelSpec>& specs, const Stamps& read) {
+  std::vector<ChannelSpec> out;
+  for (const ChannelSpec& spec : specs) {
+    const auto it = read.find(key_of(spec));
+    if ((it == read.end() || it->second != stamps_of(spec)) &&
+        std::none_of(out.begin(), out.end(), [&](const ChannelSpec& s) { return key_of(s) == key_of(spec); }))
+      out.push_back(spec);
+  }
+  return out;
+}
+
+ImageTextures::Stamps ImageTextures::stamps() const {
+  Stamps out;
+  for (const auto& [key, entry] : entries_) out[key] = entry.stamps;
+  return out;
+}
+
+void ImageTextures::hand_over(std::vector<std::pair<ChannelSpec, Entry>> read) {
+  for (auto& [spec, entry] : read) handed_over_.insert_or_assign(key_of(spec), std::move(entry));
 }
 
 const ImageTextures::Entry* ImageTextures::find(const ChannelSpec& spec) const {
@@ -205,6 +247,7 @@ const ImageTextures::Entry* ImageTextures::find(const ChannelSpec& spec) const {
 }
 
 void ImageTextures::keep_only(const std::vector<ChannelSpec>& used) {
+  handed_over_.clear();  // read for a graph that is not the one bound
   std::vector<Key> keys;
   for (const ChannelSpec& spec : used) keys.push_back(key_of(spec));
   for (auto it = entries_.begin(); it != entries_.end();)

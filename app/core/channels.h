@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -46,13 +47,28 @@ class ImageTextures {
   // ("why") if the file cannot be read as that.
   const Entry* get(const ChannelSpec& spec, std::string* error, bool* reread = nullptr);
   const Entry* find(const ChannelSpec& spec) const;  // nullptr if not read
-  // Frees the textures of every spec not in `used`.
+  // Frees the textures of every spec not in `used`, and what was handed
+  // over and not used.
   void keep_only(const std::vector<ChannelSpec>& used);
 
- private:
+  // Reading on another thread, one whose GL context shares this one's
+  // objects (the window's builder: a 4096x4096 noise PNG held the window
+  // for 1.2 s). stamps() is what the textures were read from; stale() picks
+  // the specs whose files get() would read now (once each), safe on any
+  // thread with a copy of stamps(); read() reads one as get() would, and
+  // hand_over() gives what it read to the next get()s, which take it where
+  // the files have not changed again.
   using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;
+  using Stamps = std::map<Key, std::vector<std::filesystem::file_time_type>>;
+  Stamps stamps() const;
+  static std::vector<ChannelSpec> stale(const std::vector<ChannelSpec>& specs, const Stamps& read);
+  static std::optional<Entry> read(const ChannelSpec& spec, std::string* error);
+  void hand_over(std::vector<std::pair<ChannelSpec, Entry>> read);
+
+ private:
   static Key key_of(const ChannelSpec& spec);
   std::map<Key, Entry> entries_;
+  std::map<Key, Entry> handed_over_;
 };
 
 }  // namespace rm

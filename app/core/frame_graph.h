@@ -34,6 +34,10 @@ class FrameGraph {
   // disk): the window calls update() after every watched change, even one
   // that left every pass's text as it was, and redraws when this is true.
   bool images_changed() const { return images_changed_; }
+  // What the images were read from, and the next update()'s images read on
+  // another thread (ImageTextures::stale): the window's builder reads them.
+  ImageTextures::Stamps image_stamps() const { return images_.stamps(); }
+  void hand_over(std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> read) { images_.hand_over(std::move(read)); }
 
   // One frame: every buffer pass into its target, then the image pass over
   // `target`'s (0,0,size) viewport. Buffers are the size of the picture; a

@@ -258,6 +258,19 @@ std::array<ChannelSpec, 4> Project::channels_of(const fs::path& file, const Sour
   return channels;
 }
 
+std::vector<ChannelSpec> Project::images_read() const {
+  std::vector<ChannelSpec> out;
+  auto add = [&](const std::array<ChannelSpec, 4>& channels) {
+    for (const ChannelSpec& spec : channels)
+      if (spec.kind == ChannelSpec::Kind::Image) out.push_back(spec);
+  };
+  if (pending_)
+    for (const fs::path& file : pending_->reached) add(channels_of(file, scenes_.at(file)->latest_source()));
+  else
+    for (const Pass& pass : passes_) add(pass.channels);
+  return out;
+}
+
 std::vector<fs::path> Project::watch_list() const {
   std::vector<fs::path> out;
   for (const auto& [file, scene] : scenes_) {

@@ -110,6 +110,10 @@ class Project {
   // `self` resolved, and the image pass's with the --channelN files. Safe on
   // a builder's thread (it reads only what the constructor set).
   std::array<ChannelSpec, 4> channels_of(const fs::path& file, const Source& source) const;
+  // The image files the passes read (Image channels): those prepare() made
+  // ready to commit, or else the running ones. Safe on the builder's
+  // thread after prepare().
+  std::vector<ChannelSpec> images_read() const;
   int generation() const { return generation_; }  // counts swaps
   // The passes the latest swap compiled anew (the others kept their programs).
   const std::vector<fs::path>& rebuilt() const { return rebuilt_; }

@@ -3,12 +3,18 @@
 // it back too (OIIO's handler returns, so libpng's own runs after it). What
 // another thread writes to stderr meanwhile is lost with it, so a line that
 // must be seen whatever runs (run_guard's last word) goes to a copy of the
-// stderr taken before.
+// stderr taken before, and so does std::cerr once send_cerr_past_shuts()
+// has run.
 #pragma once
 #include <fcntl.h>
 #include <unistd.h>
 
 namespace rm {
+
+// Points std::cerr at a copy of stderr: a StderrShut then silences only
+// what libraries write to fd 2, and not the program's own lines from
+// another thread (the window's, while its builder reads a PNG).
+void send_cerr_past_shuts();
 
 class StderrShut {
  public:

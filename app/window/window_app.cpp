@@ -34,6 +34,7 @@
 #include "core/renderer.h"
 #include "core/knobs.h"
 #include "core/scene.h"
+#include "core/stderr_shut.h"
 #include "window/builder.h"
 #include "window/kept_picture.h"
 #include "window/key_codes.h"
@@ -145,6 +146,7 @@ class WindowApp {
           if (options_.verbose) log_constants_compiled();
         } else {
           if (*built == ReloadStatus::Swapped) project_.commit();
+          graph_.hand_over(std::exchange(images_read_, {}));
           if (background_build_ && builder_.cancelled() && *built == ReloadStatus::Unchanged) {
             settle_tried_ = -1;  // put off: built again once saves pause
             if (options_.verbose) std::cerr << "raymarching: the tweak's exact program put off at " << steady_ns() << '\n';
@@ -252,8 +254,19 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
-    builder_.start([this, warm = warm_up_hook()] {
-      return project_.prepare(warm, [this] { return builder_.cancelled(); });
+    builder_.start([this, warm = warm_up_hook(), read = graph_.image_stamps()] {
+      const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
+      // The images the graph will read anew, read here: a large one held
+      // the window for its decoding and upload (4096x4096 noise: 1.2 s).
+      // One that cannot be read is left to the graph, which says why.
+      if (status != ReloadStatus::Failed) {
+        for (const ChannelSpec& spec : ImageTextures::stale(project_.images_read(), read)) {
+          std::string error;
+          if (auto texture = ImageTextures::read(spec, &error)) images_read_.emplace_back(spec, std::move(*texture));
+        }
+        glFinish();  // complete before the window's context draws with them
+      }
+      return status;
     });
   }
 
@@ -305,7 +318,10 @@ class WindowApp {
     std::string channel_error;
     if (status == ReloadStatus::Unchanged) {  // a channel image may have changed
       if (project_.ready() && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
-      if (graph_.images_changed()) dirty_ = true;
+      if (graph_.images_changed()) {
+        dirty_ = true;
+        if (options_.verbose) std::cerr << "raymarching: channel images changed on disk, read at " << steady_ns() << '\n';
+      }
       return;
     }
     const Diagnostics& diags = project_.diagnostics();
@@ -1098,8 +1114,11 @@ class WindowApp {
   WakeOnReadable wake_on_signal_;  // after stop_signals_, whose descriptor it polls
   Renderer renderer_;
   FrameGraph graph_;
-  // After the project and the graph, whose textures its warm-up reads: it
-  // is destroyed, and its thread joined, before them.
+  // The images the builder read for the graph its build will bind.
+  std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> images_read_;
+  // After the project, the graph and images_read_, whose textures its warm-up
+  // reads and which it writes: it is destroyed, and its thread joined,
+  // before them.
   Builder builder_;
   bool load_again_ = false;  // a reload asked for while the builder was busy
   bool background_build_ = false;  // the builder's build is background_build()'s
@@ -1214,6 +1233,9 @@ WindowApp* app_of(GLFWwindow* window) { return static_cast<WindowApp*>(glfwGetWi
 }  // namespace
 
 int run_window(const WindowOptions& options) {
+  // The builder reads channel images with stderr shut (libpng's lines):
+  // the window's own lines must not be lost meanwhile.
+  send_cerr_past_shuts();
   // The worker starts while GLFW opens the window and the driver its context.
   GlslangWarmUp glslang(kHostVersionLine);
   glfwSetErrorCallback([](int, const char* message) { std::cerr << "raymarching: glfw: " << message << '\n'; });

@@ -35,8 +35,8 @@ import sys
 import tempfile
 import time
 
-from harness import (capture_screen, check, first_frame_window, matches_render, metadata, open_window, pixels_over,
-                     save_by_rename, summary, take_screenshot, wait_for, xdotool)
+from harness import (capture_screen, check, first_frame_window, matches_render, mean_colour, metadata, open_window,
+                     pixels_over, save_by_rename, summary, take_screenshot, wait_for, xdotool)
 
 BINARY = os.path.abspath(sys.argv[1])
 
@@ -342,6 +342,39 @@ def keeps_drawing_while_building(work):
     check("and Q quits", proc.wait(timeout=10) == 0)
 
 
+def image_read_beside_the_window(work):
+    """A channel image changed on disk is read on the builder's thread: a
+    large one held the window for its decoding (4096x4096 noise, 1.2 s)."""
+    grey, red = os.path.join(work, "grey-noise.png"), os.path.join(work, "red-noise.png")
+    for path, scale in ((grey, "1,1,1"), (red, "1,0.2,0.2")):  # noise: slow to decode
+        subprocess.run(["oiiotool", "--pattern", "noise", "4096x4096", "3", "--mulc", scale, "-d", "uint8",
+                        "-o", path], check=True)
+    os.rename(grey, os.path.join(work, "noise.png"))
+    # Its mean colour (the last mip level), and a clock that keeps pictures coming.
+    scene, proc, err, out, window = start(
+        work, "textured.frag", '#pragma channel0 "noise.png"\n'
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(textureLod(iChannel0, vec2(0.5), 20.0).rgb, fract(iTime)); }\n",
+        "a window with a large channel image opens", "--no-ui", "--shot-dir", work, timeout=60)
+    if not window:
+        return
+    time.sleep(0.5)
+    os.rename(red, os.path.join(work, "noise.png"))
+    during = wait_for(lambda: pictures_during(open(err).read(), "building generation 2", "channel images changed"),
+                      timeout=30)
+    check("an image changed on disk is read again", bool(during), open(err).read()[-500:])
+    if during:
+        pictures, gap, took = during
+        print(f"     pictures while it was read: {pictures}, at most {gap:.0f} ms apart, in {took:.0f} ms")
+        check("... while the window keeps drawing", pictures >= 2 and gap < 300,
+              f"{pictures} pictures, a gap of {gap:.0f} ms")
+    time.sleep(0.3)
+    shot = take_screenshot(window, out)
+    colour, _ = mean_colour(shot) if shot else (None, None)
+    check("... and the window shows it", colour is not None and colour[0] > 0.4 and colour[1] < 0.2, colour)
+    xdotool("key", "--window", window, "q")
+    check("and Q quits", proc.wait(timeout=10) == 0)
+
+
 def quit_during_a_build(work):
     # Q while the driver compiles a save (seconds here, a minute for a large
     # shader): the process used to wait for the compile to end before it exited.
@@ -627,6 +660,7 @@ if __name__ == "__main__":
         too_slow_session(work)
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
+        image_read_beside_the_window(work)
         quit_during_a_build(work)
         quit_while_the_first_program_builds(work)
         no_compile_in_the_window_twice(

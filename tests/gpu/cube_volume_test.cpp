@@ -254,6 +254,52 @@ TEST_F(Cubes, AChangedImageIsReadAgainAndABrokenOneKeepsTheLast) {
   EXPECT_EQ(project_->watch_list().size(), 2u) << "the scene and its image";
 }
 
+// The window's builder reads a changed image on its thread and hands the
+// texture over: the graph takes it while the file is as it was read, and
+// reads the file itself once it changed again.
+TEST_F(Cubes, AnImageReadElsewhereIsTakenWhileItsFileIsAsRead) {
+  write("tex.png", Image{1, 1, {1, 0, 0, 1}});
+  write_file(dir_ / "image.frag", "#pragma channel0 \"tex.png\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, vec2(0.5)); }\n");
+  EXPECT_EQ(at(render("image.frag", 1), 0), glm::vec4(1, 0, 0, 1));
+  EXPECT_TRUE(ImageTextures::stale(project_->images_read(), graph_.image_stamps()).empty()) << "nothing changed";
+  auto later = [&](int seconds) {  // a write the clock can tell apart
+    fs::last_write_time(dir_ / "tex.png", fs::last_write_time(dir_ / "tex.png") + std::chrono::seconds(seconds));
+  };
+  auto read_elsewhere = [&] {
+    const std::vector<ChannelSpec> stale = ImageTextures::stale(project_->images_read(), graph_.image_stamps());
+    EXPECT_EQ(stale.size(), 1u);
+    std::string error;
+    std::optional<ImageTextures::Entry> read = ImageTextures::read(stale.at(0), &error);
+    EXPECT_TRUE(read) << error;
+    const GLuint texture = read->texture.get();
+    std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> handed;
+    handed.emplace_back(stale[0], std::move(*read));
+    graph_.hand_over(std::move(handed));
+    return texture;
+  };
+  FrameInputs in;
+  in.resolution = glm::vec3(1, 1, 1);
+  std::string error;
+
+  write("tex.png", Image{1, 1, {0, 1, 0, 1}});
+  later(2);
+  const GLuint green = read_elsewhere();
+  ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+  EXPECT_TRUE(graph_.images_changed());
+  EXPECT_EQ(graph_.pass_states(*project_).at(dir_ / "image.frag").channels[0].texture, green) << "taken";
+  EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(0, 1, 0, 1));
+
+  write("tex.png", Image{1, 1, {0, 0, 1, 1}});
+  later(4);
+  const GLuint blue_as_read = read_elsewhere();
+  write("tex.png", Image{1, 1, {1, 1, 0, 1}});  // changed again after the read
+  later(6);
+  ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+  EXPECT_NE(graph_.pass_states(*project_).at(dir_ / "image.frag").channels[0].texture, blue_as_read);
+  EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(1, 1, 0, 1)) << "read again";
+}
+
 TEST_F(Cubes, TheFaceFilesOfACubeMapAreWatched) {
   write("sky.png", face_image(0, 4));
   for (int f = 1; f < 6; ++f) write("sky_" + std::to_string(f) + ".png", face_image(f, 4));
