@@ -3,7 +3,6 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <variant>
 
 #include "core/cube_map.h"
 #include "core/files.h"
@@ -115,44 +114,48 @@ int mip_levels(int width, int height) {
   return levels;
 }
 
-// What a channel file reads as before it is a texture: a flat image, a
-// cube map's faces or a volume, or nothing and the error.
-struct DecodedChannel {
-  std::vector<std::filesystem::file_time_type> stamps;  // of its file (or six face files) before reading
-  std::variant<std::monostate, Image, CubeFaces, Volume> pixels;
-  std::string error;
-};
-
-// Uploads what decode_channel() read, with its mip levels.
-ImageTextures::Entry upload(const ChannelSpec& spec, DecodedChannel decoded) {
+std::optional<ImageTextures::Entry> flat_texture(const ChannelSpec& spec, std::string* error) {
+  auto file_image = load_channel_image(spec.path, error);
+  if (!file_image) return std::nullopt;
+  // GL's row 0 is the bottom: a file read right side up is flipped for it.
+  const Image image = spec.sampler.vflip ? file_image->flipped() : std::move(*file_image);
   ImageTextures::Entry entry;
-  entry.stamps = std::move(decoded.stamps);
-  if (auto* file_image = std::get_if<Image>(&decoded.pixels)) {
-    // GL's row 0 is the bottom: a file read right side up is flipped for it.
-    const Image image = spec.sampler.vflip ? file_image->flipped() : std::move(*file_image);
-    entry.texture = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(entry.texture.get(), mip_levels(image.width, image.height), GL_RGBA16F, image.width,
-                       image.height);
-    glTextureSubImage2D(entry.texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
-    entry.resolution = glm::vec3(image.width, image.height, 1.0f);
-  } else if (const auto* cube = std::get_if<CubeFaces>(&decoded.pixels)) {
-    entry.target = GL_TEXTURE_CUBE_MAP;
-    entry.texture = gl::make_texture(GL_TEXTURE_CUBE_MAP);
-    glTextureStorage2D(entry.texture.get(), mip_levels(cube->size, cube->size), GL_RGBA16F, cube->size, cube->size);
-    for (int f = 0; f < 6; ++f)  // faces upload unflipped: their first row is GL's t = 0
-      glTextureSubImage3D(entry.texture.get(), 0, 0, 0, f, cube->size, cube->size, 1, GL_RGBA, GL_FLOAT,
-                          cube->faces[static_cast<size_t>(f)].rgba.data());
-    entry.resolution = glm::vec3(cube->size, cube->size, 1.0f);
-  } else {
-    const Volume& volume = std::get<Volume>(decoded.pixels);
-    const glm::ivec3 n = volume.size;
-    entry.target = GL_TEXTURE_3D;
-    entry.texture = gl::make_texture(GL_TEXTURE_3D);
-    glTextureStorage3D(entry.texture.get(), mip_levels(std::max({n.x, n.y, n.z}), 1), GL_RGBA16F, n.x, n.y, n.z);
-    glTextureSubImage3D(entry.texture.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RGBA, GL_FLOAT, volume.rgba.data());
-    entry.resolution = glm::vec3(n);
-  }
+  entry.texture = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(entry.texture.get(), mip_levels(image.width, image.height), GL_RGBA16F, image.width, image.height);
+  glTextureSubImage2D(entry.texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, image.rgba.data());
   glGenerateTextureMipmap(entry.texture.get());
+  entry.resolution = glm::vec3(image.width, image.height, 1.0f);
+  return entry;
+}
+
+std::optional<ImageTextures::Entry> cube_texture(const ChannelSpec& spec, std::string* error) {
+  auto cube = load_cube_map(spec.path, error);
+  if (!cube) return std::nullopt;
+  ImageTextures::Entry entry;
+  entry.target = GL_TEXTURE_CUBE_MAP;
+  entry.texture = gl::make_texture(GL_TEXTURE_CUBE_MAP);
+  glTextureStorage2D(entry.texture.get(), mip_levels(cube->size, cube->size), GL_RGBA16F, cube->size, cube->size);
+  for (int f = 0; f < 6; ++f)  // faces upload unflipped: their first row is GL's t = 0
+    glTextureSubImage3D(entry.texture.get(), 0, 0, 0, f, cube->size, cube->size, 1, GL_RGBA, GL_FLOAT,
+                        cube->faces[static_cast<size_t>(f)].rgba.data());
+  glGenerateTextureMipmap(entry.texture.get());
+  entry.resolution = glm::vec3(cube->size, cube->size, 1.0f);
+  return entry;
+}
+
+std::optional<ImageTextures::Entry> volume_texture(const ChannelSpec& spec, std::string* error) {
+  auto volume = load_volume(spec.path, error);
+  if (!volume) return std::nullopt;
+  const glm::ivec3 n = volume->size;
+  ImageTextures::Entry entry;
+  entry.target = GL_TEXTURE_3D;
+  entry.texture = gl::make_texture(GL_TEXTURE_3D);
+  int levels = 1;
+  for (int size = std::max({n.x, n.y, n.z}); size > 1; size /= 2) ++levels;
+  glTextureStorage3D(entry.texture.get(), levels, GL_RGBA16F, n.x, n.y, n.z);
+  glTextureSubImage3D(entry.texture.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RGBA, GL_FLOAT, volume->rgba.data());
+  glGenerateTextureMipmap(entry.texture.get());
+  entry.resolution = glm::vec3(n);
   return entry;
 }
 
@@ -171,24 +174,6 @@ std::vector<std::filesystem::file_time_type> stamps_of(const ChannelSpec& spec) 
   return stamps;
 }
 
-DecodedChannel decode_channel(const ChannelSpec& spec) {
-  DecodedChannel out;
-  out.stamps = stamps_of(spec);
-  std::string error;
-  switch (spec.shape) {
-    case ChannelSpec::Shape::Cube:
-      if (auto cube = load_cube_map(spec.path, &error)) out.pixels = std::move(*cube);
-      break;
-    case ChannelSpec::Shape::Volume:
-      if (auto volume = load_volume(spec.path, &error)) out.pixels = std::move(*volume);
-      break;
-    default:
-      if (auto image = load_channel_image(spec.path, &error)) out.pixels = std::move(*image);
-  }
-  out.error = std::move(error);
-  return out;
-}
-
 }  // namespace
 
 ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
@@ -196,12 +181,12 @@ ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
 }
 
 std::optional<ImageTextures::Entry> ImageTextures::read(const ChannelSpec& spec, std::string* error) {
-  DecodedChannel decoded = decode_channel(spec);
-  if (std::holds_alternative<std::monostate>(decoded.pixels)) {
-    *error = decoded.error;
-    return std::nullopt;
-  }
-  return upload(spec, std::move(decoded));
+  std::vector<std::filesystem::file_time_type> stamps = stamps_of(spec);  // before reading: a later write is seen
+  std::optional<Entry> entry = spec.shape == ChannelSpec::Shape::Cube     ? cube_texture(spec, error)
+                               : spec.shape == ChannelSpec::Shape::Volume ? volume_texture(spec, error)
+                                                                          : flat_texture(spec, error);
+  if (entry) entry->stamps = std::move(stamps);
+  return entry;
 }
 
 const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::string* error, bool* reread) {

@@ -58,7 +58,8 @@ class ImageTextures {
   // thread with a copy of stamps(); read() reads one as get() would, and
   // hand_over() gives what it read to the next get()s, which take it where
   // the files have not changed again.
-  using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;
+  using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;  // specs read as one texture
+  static Key key_of(const ChannelSpec& spec);
   using Stamps = std::map<Key, std::vector<std::filesystem::file_time_type>>;
   Stamps stamps() const;
   static std::vector<ChannelSpec> stale(const std::vector<ChannelSpec>& specs, const Stamps& read);
@@ -66,7 +67,6 @@ class ImageTextures {
   void hand_over(std::vector<std::pair<ChannelSpec, Entry>> read);
 
  private:
-  static Key key_of(const ChannelSpec& spec);
   std::map<Key, Entry> entries_;
   std::map<Key, Entry> handed_over_;
 };

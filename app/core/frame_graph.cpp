@@ -143,10 +143,11 @@ FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<Channe
   StandIns out;
   out.state.format = cubemap ? format_of(true) : RenderTarget::kFormat;
   // A texture like the graph's, of as many mip levels. Its size matters
-  // only as a power of two or not, which llvmpipe's code depends on, and
-  // the builder cannot know an image's before the graph reads it: the
-  // guess is Shadertoy's, whose images, cube maps, volumes and Cube A faces
-  // are all powers of two. A picture's size is rarely one.
+  // only as a power of two or not, which llvmpipe's code depends on. The
+  // window's builder warms up with the images it reads itself; an image's
+  // stand-in is for one the graph holds, bound anew, whose guess is
+  // Shadertoy's: its images, cube maps, volumes and Cube A faces are all
+  // powers of two. A picture's size is rarely one.
   auto make = [&](GLenum target, GLenum format, glm::ivec2 size, int levels) {
     gl::Texture texture = gl::make_texture(target);
     if (target == GL_TEXTURE_3D) glTextureStorage3D(texture.get(), levels, format, size.x, size.y, size.x);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <tuple>
 
+#include "core/channel_spec.h"
+#include "core/files.h"
 #include "core/shadertoy_json.h"
 
 namespace rm {
@@ -273,12 +275,19 @@ std::vector<ChannelSpec> Project::images_read() const {
 
 std::vector<fs::path> Project::watch_list() const {
   std::vector<fs::path> out;
-  for (const auto& [file, scene] : scenes_) {
-    for (fs::path watched : scene->watch_list()) {
-      // A pass served from a .json is watched as the .json.
-      if (is_shadertoy_json(watched.parent_path())) watched = watched.parent_path();
-      if (std::find(out.begin(), out.end(), watched) == out.end()) out.push_back(watched);
-    }
+  auto add = [&](fs::path watched) {
+    // A pass served from a .json is watched as the .json.
+    if (is_shadertoy_json(watched.parent_path())) watched = watched.parent_path();
+    if (std::find(out.begin(), out.end(), watched) == out.end()) out.push_back(watched);
+  };
+  for (const auto& [file, scene] : scenes_)
+    for (const fs::path& watched : scene->watch_list()) add(watched);
+  // The --channelN files, which no pass's text names, and a cube map's faces.
+  for (const fs::path& given : channel_overrides_) {
+    if (given.empty()) continue;
+    const fs::path image = fs::absolute(given).lexically_normal();
+    add(image);
+    for (const fs::path& face : cube_face_files(image, exists_on_disk)) add(face);
   }
   return out;
 }

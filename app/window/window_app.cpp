@@ -255,36 +255,50 @@ class WindowApp {
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
     builder_.start([this, warm = warm_up_hook(), read = graph_.image_stamps()] {
+      images_read_.clear();
       const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
-      // The images the graph will read anew, read here: a large one held
-      // the window for its decoding and upload (4096x4096 noise: 1.2 s).
-      // One that cannot be read is left to the graph, which says why.
       if (status != ReloadStatus::Failed) {
-        for (const ChannelSpec& spec : ImageTextures::stale(project_.images_read(), read)) {
-          std::string error;
-          if (auto texture = ImageTextures::read(spec, &error)) images_read_.emplace_back(spec, std::move(*texture));
-        }
+        for (const ChannelSpec& spec : project_.images_read()) read_ahead(spec, read);
         glFinish();  // complete before the window's context draws with them
       }
       return status;
     });
   }
 
+  // On the builder: the texture of a channel image the build binds, read
+  // there where the graph has not read it or it changed on disk since
+  // (`read`: the graph's stamps when the build started), once a build; the
+  // graph takes it. 0 where the graph's own is current. A large image held
+  // the window for its decoding and upload (4096x4096 noise: 1.2 s). One
+  // that cannot be read is left to the graph, which says why.
+  GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::Stamps& read) {
+    if (ImageTextures::stale({spec}, read).empty()) return 0;
+    for (const auto& [done, texture] : images_read_)
+      if (ImageTextures::key_of(done) == ImageTextures::key_of(spec)) return texture.texture.get();
+    std::string error;
+    std::optional<ImageTextures::Entry> texture = ImageTextures::read(spec, &error);
+    if (!texture) return 0;
+    images_read_.emplace_back(spec, std::move(*texture));
+    return images_read_.back().second.texture.get();
+  }
+
   // Each new program is drawn once into its pass's format, with what the
-  // pass reads now where its channels are bound as before, and elsewhere
-  // (a new pass, a channel the save changed) with textures like those it
-  // will read.
+  // pass reads now where its channels are bound as before, with the images
+  // the graph will read anew (read ahead), and elsewhere (a new pass, a
+  // channel the save changed) with textures like those it will read.
   OnBuilt warm_up_hook() {
-    return [this, states = graph_.pass_states(project_)](const fs::path& pass, const Program& program,
-                                                         const Source& source) {
+    return [this, states = graph_.pass_states(project_), read = graph_.image_stamps()](
+               const fs::path& pass, const Program& program, const Source& source) {
       if (!warm_up_) return;
       const std::array<ChannelSpec, 4> channels = project_.channels_of(pass, source);
       FrameGraph::StandIns stand_ins = graph_.stand_ins(source.cubemap, channels);
       FrameGraph::PassState& state = stand_ins.state;
-      if (const auto now = states.find(pass); now != states.end()) {
-        state.format = now->second.format;
-        for (size_t c = 0; c < 4; ++c)
-          if (now->second.specs[c] == channels[c]) state.channels[c] = now->second.channels[c];
+      const auto now = states.find(pass);
+      if (now != states.end()) state.format = now->second.format;
+      for (size_t c = 0; c < 4; ++c) {
+        if (now != states.end() && now->second.specs[c] == channels[c]) state.channels[c] = now->second.channels[c];
+        else if (channels[c].kind == ChannelSpec::Kind::Image)
+          if (const GLuint texture = read_ahead(channels[c], read)) state.channels[c].texture = texture;
       }
       warm_up(program, state.format, state.channels);
     };

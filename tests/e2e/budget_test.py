@@ -344,7 +344,8 @@ def keeps_drawing_while_building(work):
 
 def image_read_beside_the_window(work):
     """A channel image changed on disk is read on the builder's thread: a
-    large one held the window for its decoding (4096x4096 noise, 1.2 s)."""
+    large one held the window for its decoding (4096x4096 noise, 1.2 s).
+    A --channelN file is watched as a #pragma's is (it was not)."""
     grey, red = os.path.join(work, "grey-noise.png"), os.path.join(work, "red-noise.png")
     for path, scale in ((grey, "1,1,1"), (red, "1,0.2,0.2")):  # noise: slow to decode
         subprocess.run(["oiiotool", "--pattern", "noise", "4096x4096", "3", "--mulc", scale, "-d", "uint8",
@@ -352,9 +353,10 @@ def image_read_beside_the_window(work):
     os.rename(grey, os.path.join(work, "noise.png"))
     # Its mean colour (the last mip level), and a clock that keeps pictures coming.
     scene, proc, err, out, window = start(
-        work, "textured.frag", '#pragma channel0 "noise.png"\n'
+        work, "textured.frag",
         "void mainImage(out vec4 c, in vec2 f) { c = vec4(textureLod(iChannel0, vec2(0.5), 20.0).rgb, fract(iTime)); }\n",
-        "a window with a large channel image opens", "--no-ui", "--shot-dir", work, timeout=60)
+        "a window with a large channel image opens", "--no-ui", "--shot-dir", work, "--channel0", "noise.png",
+        timeout=60)
     if not window:
         return
     time.sleep(0.5)
@@ -494,22 +496,23 @@ def no_compile_in_the_window_for_new_passes(work):
     quit_with_q(proc, window)
 
 
-def no_compile_in_the_window_for_a_changed_channel(work):
-    # A save that binds a channel anew (here the keyboard, where nothing
-    # was) was warmed up with what the pass read before: the window's first
-    # draw generated its code again.
+def no_compile_in_the_window_for_a_changed_channel(work, bound="keyboard"):
+    # A save that binds a channel anew (the keyboard where nothing was) was
+    # warmed up with what the pass read before, and an image it had not read
+    # with a stand-in of a power-of-two size: the window's first draw
+    # generated its code again.
     seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
     scene, proc, err, _, window = start(work, "rebound.frag", SLOW_TO_BUILD.replace("SEED", seed),
                                         "a window slow to compile opens", "--no-ui", "--target-fps", "0", timeout=60)
     if not window:
         return
-    save_by_rename(scene, "#pragma channel0 keyboard\n" + SLOW_TO_BUILD.replace("SEED", seed).replace(
+    save_by_rename(scene, f"#pragma channel0 {bound}\n" + SLOW_TO_BUILD.replace("SEED", seed).replace(
         "c = vec4(uv,", "c = texture(iChannel0, uv) + vec4(uv,"))
     shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=60)
     log = open(err).read()
     warm = re.search(r"reload ok generation 2 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms\)", log)
     first = re.search(r"first draw of generation 2: a \d+x\d+ tile, ([\d.]+) ms", log)
-    check("... and a save that reads the keyboard is shown", shown and warm and first, log[-800:])
+    check(f"... and a save that reads {bound} is shown", shown and warm and first, log[-800:])
     if shown and warm and first:
         print(f"     the builder's warm-up draw {float(warm.group(1)):.0f} ms, "
               f"the window's first draw {float(first.group(1)):.0f} ms")
@@ -672,6 +675,11 @@ if __name__ == "__main__":
         no_compile_in_the_window_twice(
             "the window's first draw of a pass with a channel bound anew does not compile it again",
             no_compile_in_the_window_for_a_changed_channel, work)
+        subprocess.run(["oiiotool", "--pattern", "checker", "300x200", "3", "-d", "uint8",
+                        "-o", os.path.join(work, "photo.png")], check=True)
+        no_compile_in_the_window_twice(
+            "... nor with an image of a side not a power of two bound anew",
+            lambda work: no_compile_in_the_window_for_a_changed_channel(work, '"photo.png"'), work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)

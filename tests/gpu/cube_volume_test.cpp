@@ -311,6 +311,20 @@ TEST_F(Cubes, TheFaceFilesOfACubeMapAreWatched) {
         << "face " << f;
 }
 
+// A --channelN file is named by no pass's text, and was not watched: a save
+// of it did not show in the window.
+TEST_F(Cubes, TheChannelFilesOfTheCommandLineAreWatched) {
+  write("sky.png", face_image(0, 4));
+  for (int f = 1; f < 6; ++f) write("night_" + std::to_string(f) + ".png", face_image(f, 4));
+  write("night.png", face_image(0, 4));
+  write_file(dir_ / "image.frag", kSampleDirections);
+  Project project(dir_ / "image.frag", SourceOptions{}, disk_file_system(), {dir_ / "night.png"});
+  ASSERT_EQ(project.reload(), ReloadStatus::Swapped) << join(project.diagnostics());
+  const auto watched = project.watch_list();
+  for (const std::string name : {"night.png", "night_1.png", "night_5.png"})
+    EXPECT_NE(std::find(watched.begin(), watched.end(), dir_ / name), watched.end()) << name;
+}
+
 // A 1x2 image, red on top: right side up by default, upside down with vflip=false.
 TEST_F(Cubes, VflipFalseLeavesAnImageAsGlReadsIt) {
   write("two.png", Image{1, 2, {1, 0, 0, 1, 0, 1, 0, 1}});
