@@ -39,6 +39,7 @@
 #include "window/kept_picture.h"
 #include "window/key_codes.h"
 #include "window/panels.h"
+#include "window/shot_writer.h"
 #include "window/take_recorder.h"
 #include "window/tiled_shot.h"
 #include "window/ui.h"
@@ -1006,15 +1007,9 @@ class WindowApp {
   }
   static constexpr char kTakeFrame[] = "raymarching:take_frame";
 
-  void save_shot(const Image& image, const fs::path& path, const Metadata& metadata) {
-    std::string error = "not enough memory to write it";
-    std::optional<fs::path> written;
-    try {
-      written = write_image(path, image, metadata, Overwrite::Never, &error);
-    } catch (const std::bad_alloc&) {
-    }
-    if (written) std::cout << "screenshot: " << written->string() << std::endl;
-    else std::cerr << "raymarching: error: screenshot: " << error << '\n';
+  void save_shot(Image image, const fs::path& path, const Metadata& metadata) {
+    if (options_.verbose) std::cerr << "raymarching: screenshot handed to the writer at " << steady_ns() << '\n';
+    shot_writer_.write(std::move(image), path, metadata);
   }
 
   // F9: a take starts recording the inputs of every frame from the next one
@@ -1161,6 +1156,7 @@ class WindowApp {
   int presented_generation_ = 0, drawn_generation_ = 0;  // of the last swap (-v), and of the last tile drawn
   bool shot_requested_ = false;
   std::deque<TiledShot> shots_;  // F12's pictures in progress, drawn in tiles, oldest first
+  ShotWriter shot_writer_{options_.verbose};  // ... and those drawn, being written
   bool shots_wait_for_build_ = false;  // see holds_shots()
   bool quit_ = false;
   bool iconified_ = false;

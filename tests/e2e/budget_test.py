@@ -351,10 +351,11 @@ def image_read_beside_the_window(work):
         subprocess.run(["oiiotool", "--pattern", "noise", "4096x4096", "3", "--mulc", scale, "-d", "uint8",
                         "-o", path], check=True)
     os.rename(grey, os.path.join(work, "noise.png"))
-    # Its mean colour (the last mip level), and a clock that keeps pictures coming.
+    # Its mean colour (the last mip level), and a clock that keeps pictures
+    # coming but changes nothing (alpha below 1 would: PNG's is unassociated).
     scene, proc, err, out, window = start(
         work, "textured.frag",
-        "void mainImage(out vec4 c, in vec2 f) { c = vec4(textureLod(iChannel0, vec2(0.5), 20.0).rgb, fract(iTime)); }\n",
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(textureLod(iChannel0, vec2(0.5), 20.0).rgb + step(1e9, iTime), 1); }\n",
         "a window with a large channel image opens", "--no-ui", "--shot-dir", work, "--channel0", "noise.png",
         timeout=60)
     if not window:
@@ -613,6 +614,43 @@ def shots_in_tiles(work):
     proc.wait(timeout=10)
 
 
+NOISE = """// noise, whose PNG is slow to encode
+void mainImage(out vec4 c, in vec2 f) {
+  c = vec4(fract(sin(dot(f, vec2(12.9898, 78.233)) + iTime) * 43758.5453), fract(f * 0.618), 1.0);
+}
+"""
+
+
+def shots_written_beside_the_window(work):
+    # A shot drawn is encoded and written on a thread of its own: a PNG of
+    # 2560x1440 noise held the window while it was encoded and synced.
+    scene, proc, err, out, window = start(work, "noisy_shot.frag", NOISE, "a window for large shots opens",
+                                          "--shot-scale", "8", "--shot-dir", work, "--no-ui", "--refine", "0")
+    if not window:
+        return
+    xdotool("key", "--window", window, "F12")
+    during = wait_for(lambda: pictures_during(open(err).read(), "screenshot handed to the writer",
+                                              "screenshot writer done"), timeout=60)
+    check("F12's large shot is written", bool(during) and "screenshot: " in open(out).read(), open(err).read()[-500:])
+    if during:
+        pictures, gap, took = during
+        print(f"     pictures while it was written: {pictures}, at most {gap:.0f} ms apart, in {took:.0f} ms")
+        check("... while the window keeps drawing", pictures >= 2 and gap < 300,
+              f"{pictures} pictures, a gap of {gap:.0f} ms")
+    # Q while the next one is written: the window goes, the shot is still written whole.
+    xdotool("key", "--window", window, "F12")
+    handed = wait_for(lambda: open(err).read().count("screenshot handed to the writer") == 2, timeout=60)
+    status, took = quit_with_q(proc, window)
+    print(f"     Q while the second was written: exit after {took:.3f} s")
+    shots = sorted(f for f in os.listdir(work) if f.startswith("noisy_shot-"))
+    sizes = [re.search(r"(\d+) x\s*(\d+)", subprocess.run(["iinfo", os.path.join(work, f)], capture_output=True,
+                                                           text=True).stdout) for f in shots]
+    sizes = [(int(m.group(1)), int(m.group(2))) if m else None for m in sizes]
+    check("Q while a shot is written quits, and the shot is written whole",
+          handed and status == 0 and open(out).read().count("screenshot: ") == 2 and sizes == [(2560, 1440)] * 2,
+          f"status {status}, {shots} {sizes}")
+
+
 def refined_still(work):
     scene, proc, err, out, window = start(work, "edges.frag", EDGES.replace("COLOUR", "0.25"),
                                           "a static window with --refine 8 opens", "--refine", "8", "--no-ui",
@@ -683,6 +721,7 @@ if __name__ == "__main__":
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
+        shots_written_beside_the_window(work)
         refined_still(work)
     finally:
         status = summary()

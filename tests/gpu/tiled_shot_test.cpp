@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "window/shot_writer.h"
+
 #include "egl_fixture.h"
 #include "support.h"
 
@@ -52,6 +54,28 @@ TEST_F(TiledShotTest, AShotLargerThanTheLargestTargetIsDrawnInPartsAndEqualsTheW
   while (!again.draw(graph_, project, 1e9)) {
   }
   EXPECT_EQ(again.read().rgba, whole.rgba);
+}
+
+// Shots drawn are written on the writer's thread: each in its own file
+// (one of the same name stays as it was), all of them before the writer is
+// gone, each said on stdout.
+TEST(ShotWriter, WritesEveryShotHandedOverBeforeItGoesAndReplacesNone) {
+  TempDir dir;
+  write_file(dir / "shot.png", "an earlier shot");
+  testing::internal::CaptureStdout();
+  {
+    ShotWriter writer(false);
+    for (int i = 0; i < 3; ++i) writer.write(Image{1, 1, {i / 4.0f, 0.5f, 1.0f, 1.0f}}, dir / "shot.png", {});
+  }
+  const std::string said = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(test::read_file(dir / "shot.png"), "an earlier shot");
+  for (int i = 0; i < 3; ++i) {
+    const fs::path written = dir / ("shot-" + std::to_string(i + 1) + ".png");
+    EXPECT_NE(said.find("screenshot: " + written.string() + "\n"), std::string::npos) << said;
+    const std::vector<float> px = test::read_pixels(written);
+    ASSERT_EQ(px.size(), 4u) << written;
+    EXPECT_NEAR(px[0], i / 4.0f, 1.0f / 255) << written;
+  }
 }
 
 }  // namespace
