@@ -205,15 +205,9 @@ const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::str
   return &entries_.at(key);
 }
 
-std::vector<ChannelSpec> ImageTextures::stale(const std::vector<ChannelSpec>& specs, const Stamps& read) {
-  std::vector<ChannelSpec> out;
-  for (const ChannelSpec& spec : specs) {
-    const auto it = read.find(key_of(spec));
-    if ((it == read.end() || it->second != stamps_of(spec)) &&
-        std::none_of(out.begin(), out.end(), [&](const ChannelSpec& s) { return key_of(s) == key_of(spec); }))
-      out.push_back(spec);
-  }
-  return out;
+bool ImageTextures::stale(const ChannelSpec& spec, const Stamps& read) {
+  const auto it = read.find(key_of(spec));
+  return it == read.end() || it->second != stamps_of(spec);
 }
 
 ImageTextures::Stamps ImageTextures::stamps() const {

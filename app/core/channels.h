@@ -53,16 +53,16 @@ class ImageTextures {
 
   // Reading on another thread, one whose GL context shares this one's
   // objects (the window's builder: a 4096x4096 noise PNG held the window
-  // for 1.2 s). stamps() is what the textures were read from; stale() picks
-  // the specs whose files get() would read now (once each), safe on any
-  // thread with a copy of stamps(); read() reads one as get() would, and
+  // for 1.2 s). stamps() is what the textures were read from; stale() says
+  // whether get() would read the file of `spec` now, safe on any thread
+  // with a copy of stamps(); read() reads one as get() would, and
   // hand_over() gives what it read to the next get()s, which take it where
   // the files have not changed again.
   using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;  // specs read as one texture
   static Key key_of(const ChannelSpec& spec);
   using Stamps = std::map<Key, std::vector<std::filesystem::file_time_type>>;
   Stamps stamps() const;
-  static std::vector<ChannelSpec> stale(const std::vector<ChannelSpec>& specs, const Stamps& read);
+  static bool stale(const ChannelSpec& spec, const Stamps& read);
   static std::optional<Entry> read(const ChannelSpec& spec, std::string* error);
   void hand_over(std::vector<std::pair<ChannelSpec, Entry>> read);
 

@@ -255,7 +255,8 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
-    builder_.start([this, warm = warm_up_hook(), read = graph_.image_stamps()] {
+    ImageTextures::Stamps read = graph_.image_stamps();
+    builder_.start([this, warm = warm_up_hook(read), read = std::move(read)] {
       images_read_.clear();
       const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
       if (status != ReloadStatus::Failed) {
@@ -273,7 +274,7 @@ class WindowApp {
   // the window for its decoding and upload (4096x4096 noise: 1.2 s). One
   // that cannot be read is left to the graph, which says why.
   GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::Stamps& read) {
-    if (ImageTextures::stale({spec}, read).empty()) return 0;
+    if (!ImageTextures::stale(spec, read)) return 0;
     for (const auto& [done, texture] : images_read_)
       if (ImageTextures::key_of(done) == ImageTextures::key_of(spec)) return texture.texture.get();
     std::string error;
@@ -287,8 +288,9 @@ class WindowApp {
   // pass reads now where its channels are bound as before, with the images
   // the graph will read anew (read ahead), and elsewhere (a new pass, a
   // channel the save changed) with textures like those it will read.
-  OnBuilt warm_up_hook() {
-    return [this, states = graph_.pass_states(project_), read = graph_.image_stamps()](
+  // `read`: the graph's image stamps as the build starts (read_ahead).
+  OnBuilt warm_up_hook(ImageTextures::Stamps read) {
+    return [this, states = graph_.pass_states(project_), read = std::move(read)](
                const fs::path& pass, const Program& program, const Source& source) {
       if (!warm_up_) return;
       const std::array<ChannelSpec, 4> channels = project_.channels_of(pass, source);
@@ -321,7 +323,7 @@ class WindowApp {
       background_build_ = twin_build_ = true;
       twins_started_ns_ = steady_ns();
       if (options_.verbose) std::cerr << "raymarching: building twins at " << twins_started_ns_ << '\n';
-      builder_.start([this, warm = warm_up_hook()] {
+      builder_.start([this, warm = warm_up_hook(graph_.image_stamps())] {
         return project_.prepare_twins(warm, [this] { return builder_.cancelled(); }) ? ReloadStatus::Swapped
                                                                                     : ReloadStatus::Unchanged;
       });
