@@ -131,33 +131,7 @@ class WindowApp {
       // Ctrl-C in the terminal, or a kill: quit as Q does, so that a take
       // being recorded is written and no half file is left.
       if (stop_signals_.received()) quit_ = true;
-      if (const std::optional<ReloadStatus> built = builder_.finished()) {
-        if (std::exchange(twin_build_, false)) {
-          if (*built == ReloadStatus::Swapped) project_.commit_twins();
-          if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
-          // Unchanged but not cancelled: the twins were current already, or
-          // there is nothing to lift, or the driver rejected them.
-          if (options_.verbose)
-            std::cerr << "raymarching: "
-                      << (*built == ReloadStatus::Swapped ? "twins built"
-                          : builder_.cancelled()          ? "twins put off"
-                                                          : "no new twins")
-                      << " for generation " << project_.generation() << " in "
-                      << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
-          if (options_.verbose) log_constants_compiled();
-        } else {
-          if (*built == ReloadStatus::Swapped) project_.commit();
-          graph_.hand_over(std::exchange(images_read_, {}));
-          if (background_build_ && builder_.cancelled() && *built == ReloadStatus::Unchanged) {
-            settle_tried_ = -1;  // put off: built again once saves pause
-            if (options_.verbose) std::cerr << "raymarching: the tweak's exact program put off at " << steady_ns() << '\n';
-          }
-          loaded(*built);
-        }
-        background_build_ = false;
-        shots_wait_for_build_ = false;
-        if (std::exchange(load_again_, false)) load();
-      }
+      if (const std::optional<ReloadStatus> built = builder_.finished()) take_build(*built);
       if (!builder_.busy()) background_build();
       if (busy() && !quit_) frame(redraw_needed());
     }
@@ -265,6 +239,36 @@ class WindowApp {
       }
       return status;
     });
+  }
+
+  // A finished build: its program on screen, or its twins kept; then the
+  // build of a save that came meanwhile.
+  void take_build(ReloadStatus built) {
+    if (std::exchange(twin_build_, false)) {
+      if (built == ReloadStatus::Swapped) project_.commit_twins();
+      if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
+      // Unchanged but not cancelled: the twins were current already, or
+      // there is nothing to lift, or the driver rejected them.
+      if (options_.verbose)
+        std::cerr << "raymarching: "
+                  << (built == ReloadStatus::Swapped ? "twins built"
+                      : builder_.cancelled()         ? "twins put off"
+                                                     : "no new twins")
+                  << " for generation " << project_.generation() << " in "
+                  << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
+      if (options_.verbose) log_constants_compiled();
+    } else {
+      if (built == ReloadStatus::Swapped) project_.commit();
+      graph_.hand_over(std::exchange(images_read_, {}));
+      if (background_build_ && builder_.cancelled() && built == ReloadStatus::Unchanged) {
+        settle_tried_ = -1;  // put off: built again once saves pause
+        if (options_.verbose) std::cerr << "raymarching: the tweak's exact program put off at " << steady_ns() << '\n';
+      }
+      loaded(built);
+    }
+    background_build_ = false;
+    shots_wait_for_build_ = false;
+    if (std::exchange(load_again_, false)) load();
   }
 
   // On the builder: the texture of a channel image the build binds, read
@@ -702,7 +706,7 @@ class WindowApp {
       const long long start = steady_ns();
       graph_.draw_image(project_, p.inputs, p.size, picture_.target(p.size), tile);
       drawn_generation_ = project_.generation();
-      glFinish();  // the tile is done: input is read before the next
+      finish_tile();  // input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
       p.plan.drawn(tile, ms);
       ++p.tiles;
@@ -719,8 +723,29 @@ class WindowApp {
                   << tile.w << " tile, " << ms << " ms (the driver finishes compiling in it)\n";
       program_drawn_ = true;
       if (!first_draw && replan(ms)) return;
-    } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms());
+    } while (!p.plan.done() && (steady_ns() - slice_start) / 1e6 < slice_ms() && !holds_for_build());
     if (p.plan.done()) finish_picture();
+  }
+
+  // Waits for the tile just drawn. A save that comes meanwhile starts its
+  // build at once, beside the tile, not once the picture is done (a heavy
+  // shader's tile may take seconds). Twins, which change nothing on screen,
+  // are taken to make way for it; a program waits for the tile's end. On
+  // the builder only: a build in place would swap programs mid-picture.
+  void finish_tile() {
+    if (!builder_.available()) {
+      glFinish();
+      return;
+    }
+    constexpr GLuint64 kSaveCheckNs = 2'000'000;
+    GLsync done = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    GLbitfield flush = GL_SYNC_FLUSH_COMMANDS_BIT;
+    while (glClientWaitSync(done, std::exchange(flush, 0), kSaveCheckNs) == GL_TIMEOUT_EXPIRED) {
+      if (watcher_->changed()) load();
+      if (load_again_ && twin_build_)
+        if (const std::optional<ReloadStatus> built = builder_.finished()) take_build(*built);
+    }
+    glDeleteSync(done);
   }
 
   // One tile of the next buffer pass this picture still draws; false when
@@ -747,7 +772,7 @@ class WindowApp {
       const bool first_of_pass = p.buffer_plan->drawn_ms() == 0 && !buffer_cost_.count(file);
       const long long start = steady_ns();
       graph_.draw_pass_region(project_, index, p.inputs, tile);
-      glFinish();  // the tile is done: input is read before the next
+      finish_tile();  // input is read before the next
       const double ms = (steady_ns() - start) / 1e6;
       if (smallest_tile(tile) && !first_of_pass && ms > options_.tile_limit_s * 1000.0) {
         report_too_slow(file, tile, ms);

@@ -5,7 +5,9 @@ Run as: xvfb-run -a python3 budget_test.py RAYMARCHING
 Checks: a shader of half a million loop steps per pixel (about half a
 minute a picture here) is drawn in tiles, with the budget on or off, and Q
 quits within 1 s of the key;
-a save that replaces it shows within 1 s; a smallest tile slower than
+a save that replaces it shows within 1 s, and a save during a tile of a
+second or more starts its build at once, not after the tile (the twins
+built in the background make way for it); a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
 built while the running one keeps drawing, and Q during such a build,
@@ -269,6 +271,40 @@ def heavy_fixed_by_a_save(work):
           wait_for(lambda: re.search(r"picture 320x180 scale 1 in \d+ tiles?", open(err).read())), open(err).read()[-500:])
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
+
+
+def save_during_a_long_tile(work):
+    # 140 times HEAVY's steps, a smallest tile of two seconds or more: the
+    # save comes during the second, before the window's loop turns again.
+    # (llvmpipe's loop limit counts a nested loop's turns together, so the
+    # steps are in the loop's body, in two chains within validation's limit.)
+    slow = ("#define STEP(a) a = fract(a * k.x + sin(a + float(i) * k.y + f.x * k.z));\n"
+            "void mainImage(out vec4 c, in vec2 f) {\n"
+            "  vec3 k = vec3(137, 1, 1) / vec3(100, 1000, 100);\n"
+            "  float a = float(0), b = float(1);\n"
+            "  for (int i = 0; i < 60000; ++i) { " + "STEP(a) STEP(b) " * 560 + "}\n"
+            "  c = vec4(a, b, f.x / iResolution.x, 1);\n"
+            "}\n")
+    scene, proc, err, _, window = start(work, "long_tiles.frag", slow, "a window whose smallest tile is slow opens",
+                                        "--tile-limit", "30", timeout=60)
+    if not window:
+        return
+    saved = time.monotonic_ns()
+    save_by_rename(scene, LIGHT)
+    drawn = re.search(r"first draw of generation 1: a 4x4 tile, ([0-9.]+) ms", open(err).read())
+    check("a save comes during the second tile",
+          drawn and saved < (int(re.search(r"presented generation 1 at (\d+)", open(err).read()).group(1)) +
+                             float(drawn.group(1)) * 0.8e6), open(err).read()[-500:])
+    building = wait_for(lambda: re.search(r"building generation 2 at (\d+)", open(err).read()), timeout=10, step=0.01)
+    check("a save during a long tile is seen", bool(building), open(err).read()[-500:])
+    if building:
+        delay = (int(building.group(1)) - saved) / 1e6
+        print(f"     save to the start of its build: {delay:.1f} ms, during a tile of {float(drawn.group(1)) / 1000:.1f} s")
+        check("... and its build starts at once, not after the tile", delay < 250, f"{delay:.1f} ms")
+    check("the new program is shown after the tile",
+          wait_for(lambda: "presented generation 2" in open(err).read(), timeout=10), open(err).read()[-500:])
+    status, took = quit_with_q(proc, window)
+    check("and Q quits", status == 0, f"status {status}")
 
 
 def too_slow_session(work):
@@ -698,6 +734,7 @@ if __name__ == "__main__":
         heavy_animated_replanned(work)
         tiled_feedback(work)
         heavy_fixed_by_a_save(work)
+        save_during_a_long_tile(work)
         too_slow_session(work)
         too_slow_buffer(work)
         keeps_drawing_while_building(work)
