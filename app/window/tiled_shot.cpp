@@ -28,7 +28,7 @@ void TiledShot::start_part(size_t index) {
   plan_ = TilePlan(glm::ivec2(part.z, part.w), tile_ms_, plan_.per_pixel_ms());
 }
 
-bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms) {
+bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms, const std::function<void()>& finish) {
   using Clock = std::chrono::steady_clock;
   const auto slice_start = Clock::now();
   auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
@@ -54,7 +54,8 @@ bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms)
     in.frag_coord_offset = glm::vec2(part.x, part.y);  // gl_FragCoord is the whole shot's
     const auto start = Clock::now();
     graph.draw_image(project, in, glm::ivec2(part.z, part.w), target_->framebuffer(), tile);
-    glFinish();  // the tile is done: the window reads input before the next
+    if (finish) finish();  // the tile is done: the window reads input before the next
+    else glFinish();
     plan_.drawn(tile, ms_since(start));
     ++tiles_;
     if (ms_since(slice_start) >= slice_ms) break;

@@ -5,6 +5,7 @@
 // size, each in tiles, and put together in memory.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -28,7 +29,8 @@ class TiledShot {
             std::filesystem::path path, Metadata metadata);
 
   // Draws tiles for about slice_ms; true once the picture is whole.
-  bool draw(FrameGraph& graph, const Project& project, double slice_ms);
+  // `finish` waits for each tile (glFinish where none is given).
+  bool draw(FrameGraph& graph, const Project& project, double slice_ms, const std::function<void()>& finish = {});
   // A new program: the shot is drawn again from its first tile, with the
   // metadata that says what that program is.
   void restart(Metadata metadata);

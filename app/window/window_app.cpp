@@ -727,9 +727,9 @@ class WindowApp {
     if (p.plan.done()) finish_picture();
   }
 
-  // Waits for the tile just drawn. A save that comes meanwhile starts its
-  // build at once, beside the tile, not once the picture is done (a heavy
-  // shader's tile may take seconds). Twins, which change nothing on screen,
+  // Waits for the tile just drawn, of a picture or a shot. A save that
+  // comes meanwhile starts its build at once, beside the tile, not once the
+  // slice is done (a heavy shader's tile may take seconds). Twins, which change nothing on screen,
   // are taken to make way for it; a program waits for the tile's end. On
   // the builder only: a build in place would swap programs mid-picture.
   void finish_tile() {
@@ -1010,7 +1010,7 @@ class WindowApp {
   void continue_shot() {
     TiledShot& shot = shots_.front();
     try {
-      if (!shot.draw(graph_, project_, budget_.budget_ms())) return;
+      if (!shot.draw(graph_, project_, budget_.budget_ms(), [this] { finish_tile(); })) return;
     } catch (const std::bad_alloc&) {
       const glm::ivec2 size(shot.inputs().resolution);
       std::cerr << "raymarching: error: no screenshot: not enough memory for " << size.x << "x" << size.y
