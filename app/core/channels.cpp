@@ -205,14 +205,14 @@ const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::str
   return &entries_.at(key);
 }
 
-bool ImageTextures::stale(const ChannelSpec& spec, const Stamps& read) {
-  const auto it = read.find(key_of(spec));
-  return it == read.end() || it->second != stamps_of(spec);
+bool ImageTextures::stale(const ChannelSpec& spec, const HeldImages& held) {
+  const auto it = held.find(key_of(spec));
+  return it == held.end() || it->second.stamps != stamps_of(spec);
 }
 
-ImageTextures::Stamps ImageTextures::stamps() const {
-  Stamps out;
-  for (const auto& [key, entry] : entries_) out[key] = entry.stamps;
+ImageTextures::HeldImages ImageTextures::held() const {
+  HeldImages out;
+  for (const auto& [key, entry] : entries_) out[key] = {entry.stamps, glm::ivec3(entry.resolution)};
   return out;
 }
 

@@ -53,16 +53,20 @@ class ImageTextures {
 
   // Reading on another thread, one whose GL context shares this one's
   // objects (the window's builder: a 4096x4096 noise PNG held the window
-  // for 1.2 s). stamps() is what the textures were read from; stale() says
-  // whether get() would read the file of `spec` now, safe on any thread
-  // with a copy of stamps(); read() reads one as get() would, and
-  // hand_over() gives what it read to the next get()s, which take it where
-  // the files have not changed again.
+  // for 1.2 s). held() is what the textures were read from, and their
+  // sizes; stale() says whether get() would read the file of `spec` now,
+  // safe on any thread with a copy of held(); read() reads one as get()
+  // would, and hand_over() gives what it read to the next get()s, which
+  // take it where the files have not changed again.
   using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;  // specs read as one texture
   static Key key_of(const ChannelSpec& spec);
-  using Stamps = std::map<Key, std::vector<std::filesystem::file_time_type>>;
-  Stamps stamps() const;
-  static bool stale(const ChannelSpec& spec, const Stamps& read);
+  struct Held {
+    std::vector<std::filesystem::file_time_type> stamps;
+    glm::ivec3 size{0};  // as Entry::resolution
+  };
+  using HeldImages = std::map<Key, Held>;
+  HeldImages held() const;
+  static bool stale(const ChannelSpec& spec, const HeldImages& held);
   static std::optional<Entry> read(const ChannelSpec& spec, std::string* error);
   void hand_over(std::vector<std::pair<ChannelSpec, Entry>> read);
 

@@ -139,18 +139,20 @@ std::map<fs::path, FrameGraph::PassState> FrameGraph::pass_states(const Project&
   return out;
 }
 
-FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<ChannelSpec, 4>& channels) const {
+FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<ChannelSpec, 4>& channels,
+                                           const ImageTextures::HeldImages& held) const {
   StandIns out;
   out.state.format = cubemap ? format_of(true) : RenderTarget::kFormat;
   // A texture like the graph's, of as many mip levels. Its size matters
   // only as a power of two or not, which llvmpipe's code depends on. The
   // window's builder warms up with the images it reads itself; an image's
-  // stand-in is for one the graph holds, bound anew, whose guess is
-  // Shadertoy's: its images, cube maps, volumes and Cube A faces are all
-  // powers of two. A picture's size is rarely one.
-  auto make = [&](GLenum target, GLenum format, glm::ivec2 size, int levels) {
+  // stand-in is for one the graph holds, bound anew (the same file on
+  // another channel, or with another sampler): of its size. Without one,
+  // the guess is Shadertoy's: its images, cube maps, volumes and Cube A
+  // faces are all powers of two. A picture's size is rarely one.
+  auto make = [&](GLenum target, GLenum format, glm::ivec3 size, int levels) {
     gl::Texture texture = gl::make_texture(target);
-    if (target == GL_TEXTURE_3D) glTextureStorage3D(texture.get(), levels, format, size.x, size.y, size.x);
+    if (target == GL_TEXTURE_3D) glTextureStorage3D(texture.get(), levels, format, size.x, size.y, size.z);
     else glTextureStorage2D(texture.get(), levels, format, size.x, size.y);
     out.textures.push_back(std::move(texture));
     return out.textures.back().get();
@@ -164,14 +166,19 @@ FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<Channe
     in.texture = black_[shape_index(spec.shape)].get();
     in.sampler = sampler_for(spec.sampler);
     switch (spec.kind) {
-      case ChannelSpec::Kind::Image: in.texture = make(target, GL_RGBA16F, even, mip_levels(even)); break;
+      case ChannelSpec::Kind::Image: {
+        const auto image = held.find(ImageTextures::key_of(spec));
+        const glm::ivec3 size = image != held.end() ? glm::max(image->second.size, 1) : glm::ivec3(even, even.x);
+        in.texture = make(target, GL_RGBA16F, size, mip_levels(glm::ivec2(std::max({size.x, size.y, size.z}))));
+        break;
+      }
       case ChannelSpec::Kind::Pass: {
         const bool cube = spec.shape == ChannelSpec::Shape::Cube;
-        in.texture = make(target, format_of(cube), cube ? even : odd, mip_levels(cube ? even : odd));
+        in.texture = make(target, format_of(cube), glm::ivec3(cube ? even : odd, 1), mip_levels(cube ? even : odd));
         break;
       }
       case ChannelSpec::Kind::Keyboard:
-        in.texture = make(GL_TEXTURE_2D, GL_R8, glm::ivec2(KeyboardState::kKeys, 3), 1);
+        in.texture = make(GL_TEXTURE_2D, GL_R8, glm::ivec3(KeyboardState::kKeys, 3, 1), 1);
         break;
       default: break;
     }

@@ -36,7 +36,7 @@ class FrameGraph {
   bool images_changed() const { return images_changed_; }
   // What the images were read from, and the next update()'s images read on
   // another thread (ImageTextures::stale): the window's builder reads them.
-  ImageTextures::Stamps image_stamps() const { return images_.stamps(); }
+  ImageTextures::HeldImages images_held() const { return images_.held(); }
   void hand_over(std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> read) { images_.hand_over(std::move(read)); }
 
   // One frame: every buffer pass into its target, then the image pass over
@@ -112,7 +112,9 @@ class FrameGraph {
     PassState state;
     std::vector<gl::Texture> textures;  // owned, for the warm-up's time
   };
-  StandIns stand_ins(bool cubemap, const std::array<ChannelSpec, 4>& channels) const;
+  // `held`: the images the graph holds, as images_held() gave them.
+  StandIns stand_ins(bool cubemap, const std::array<ChannelSpec, 4>& channels,
+                     const ImageTextures::HeldImages& held = {}) const;
   // The latest output of a buffer pass (tests read it); 0 if none.
   GLuint buffer_texture(const fs::path& pass) const;
 

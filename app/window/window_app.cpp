@@ -229,12 +229,12 @@ class WindowApp {
       return;
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
-    ImageTextures::Stamps read = graph_.image_stamps();
-    builder_.start([this, warm = warm_up_hook(read), read = std::move(read)] {
+    ImageTextures::HeldImages held = graph_.images_held();
+    builder_.start([this, warm = warm_up_hook(held), held = std::move(held)] {
       images_read_.clear();
       const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
       if (status != ReloadStatus::Failed) {
-        for (const ChannelSpec& spec : project_.images_read()) read_ahead(spec, read);
+        for (const ChannelSpec& spec : project_.images_read()) read_ahead(spec, held);
         glFinish();  // complete before the window's context draws with them
       }
       return status;
@@ -273,12 +273,12 @@ class WindowApp {
 
   // On the builder: the texture of a channel image the build binds, read
   // there where the graph has not read it or it changed on disk since
-  // (`read`: the graph's stamps when the build started), once a build; the
+  // (`held`: the graph's images when the build started), once a build; the
   // graph takes it. 0 where the graph's own is current. A large image held
   // the window for its decoding and upload (4096x4096 noise: 1.2 s). One
   // that cannot be read is left to the graph, which says why.
-  GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::Stamps& read) {
-    if (!ImageTextures::stale(spec, read)) return 0;
+  GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::HeldImages& held) {
+    if (!ImageTextures::stale(spec, held)) return 0;
     for (const auto& [done, texture] : images_read_)
       if (ImageTextures::key_of(done) == ImageTextures::key_of(spec)) return texture.texture.get();
     std::string error;
@@ -292,20 +292,20 @@ class WindowApp {
   // pass reads now where its channels are bound as before, with the images
   // the graph will read anew (read ahead), and elsewhere (a new pass, a
   // channel the save changed) with textures like those it will read.
-  // `read`: the graph's image stamps as the build starts (read_ahead).
-  OnBuilt warm_up_hook(ImageTextures::Stamps read) {
-    return [this, states = graph_.pass_states(project_), read = std::move(read)](
+  // `held`: the graph's images as the build starts (read_ahead).
+  OnBuilt warm_up_hook(ImageTextures::HeldImages held) {
+    return [this, states = graph_.pass_states(project_), held = std::move(held)](
                const fs::path& pass, const Program& program, const Source& source) {
       if (!warm_up_) return;
       const std::array<ChannelSpec, 4> channels = project_.channels_of(pass, source);
-      FrameGraph::StandIns stand_ins = graph_.stand_ins(source.cubemap, channels);
+      FrameGraph::StandIns stand_ins = graph_.stand_ins(source.cubemap, channels, held);
       FrameGraph::PassState& state = stand_ins.state;
       const auto now = states.find(pass);
       if (now != states.end()) state.format = now->second.format;
       for (size_t c = 0; c < 4; ++c) {
         if (now != states.end() && now->second.specs[c] == channels[c]) state.channels[c] = now->second.channels[c];
         else if (channels[c].kind == ChannelSpec::Kind::Image)
-          if (const GLuint texture = read_ahead(channels[c], read)) state.channels[c].texture = texture;
+          if (const GLuint texture = read_ahead(channels[c], held)) state.channels[c].texture = texture;
       }
       warm_up(program, state.format, state.channels);
     };
@@ -327,7 +327,7 @@ class WindowApp {
       background_build_ = twin_build_ = true;
       twins_started_ns_ = steady_ns();
       if (options_.verbose) std::cerr << "raymarching: building twins at " << twins_started_ns_ << '\n';
-      builder_.start([this, warm = warm_up_hook(graph_.image_stamps())] {
+      builder_.start([this, warm = warm_up_hook(graph_.images_held())] {
         return project_.prepare_twins(warm, [this] { return builder_.cancelled(); }) ? ReloadStatus::Swapped
                                                                                     : ReloadStatus::Unchanged;
       });

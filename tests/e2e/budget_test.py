@@ -16,7 +16,8 @@ the interface hidden, the window's first draw of a new program does not
 compile it again (it drew straight into the window's format, which the
 builder's warm-up did not match), nor that of each pass of a first
 program, or of a channel a save binds anew, whose warm-up stands in
-textures like those the pass will read;
+textures like those the pass will read (of the size of an image the graph
+holds);
 a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
@@ -533,18 +534,22 @@ def no_compile_in_the_window_for_new_passes(work):
     quit_with_q(proc, window)
 
 
-def no_compile_in_the_window_for_a_changed_channel(work, bound="keyboard"):
+def no_compile_in_the_window_for_a_changed_channel(work, bound="keyboard", held=None):
     # A save that binds a channel anew (the keyboard where nothing was) was
     # warmed up with what the pass read before, and an image it had not read
     # with a stand-in of a power-of-two size: the window's first draw
-    # generated its code again.
+    # generated its code again. So was an image the graph holds (`held`,
+    # bound to channel 1 from the start) bound to another channel.
     seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
-    scene, proc, err, _, window = start(work, "rebound.frag", SLOW_TO_BUILD.replace("SEED", seed),
+    before = f"#pragma channel1 {held}\n" if held else ""
+    reads = "texture(iChannel1, uv) * 0.5 + " if held else ""
+    scene, proc, err, _, window = start(work, "rebound.frag", before + SLOW_TO_BUILD.replace("SEED", seed).replace(
+                                            "c = vec4(uv,", f"c = {reads}vec4(uv,"),
                                         "a window slow to compile opens", "--no-ui", "--target-fps", "0", timeout=60)
     if not window:
         return
-    save_by_rename(scene, f"#pragma channel0 {bound}\n" + SLOW_TO_BUILD.replace("SEED", seed).replace(
-        "c = vec4(uv,", "c = texture(iChannel0, uv) + vec4(uv,"))
+    save_by_rename(scene, before + f"#pragma channel0 {bound}\n" + SLOW_TO_BUILD.replace("SEED", seed).replace(
+        "c = vec4(uv,", f"c = texture(iChannel0, uv) + {reads}vec4(uv,"))
     shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=60)
     log = open(err).read()
     warm = re.search(r"reload ok generation 2 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms\)", log)
@@ -755,6 +760,9 @@ if __name__ == "__main__":
         no_compile_in_the_window_twice(
             "... nor with an image of a side not a power of two bound anew",
             lambda work: no_compile_in_the_window_for_a_changed_channel(work, '"photo.png"'), work)
+        no_compile_in_the_window_twice(
+            "... nor with such an image the graph holds, bound to another channel too",
+            lambda work: no_compile_in_the_window_for_a_changed_channel(work, '"photo.png"', '"photo.png"'), work)
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)

@@ -265,7 +265,7 @@ TEST_F(Cubes, AnImageReadElsewhereIsTakenWhileItsFileIsAsRead) {
   auto stale = [&] {
     std::vector<ChannelSpec> out;
     for (const ChannelSpec& spec : project_->images_read())
-      if (ImageTextures::stale(spec, graph_.image_stamps())) out.push_back(spec);
+      if (ImageTextures::stale(spec, graph_.images_held())) out.push_back(spec);
     return out;
   };
   EXPECT_TRUE(stale().empty()) << "nothing changed";
