@@ -25,8 +25,9 @@ void Builder::start(std::function<ReloadStatus()> build) {
     glfwMakeContextCurrent(context_);
     status_ = build();
     // Shared objects are complete for another context once this one has
-    // finished with them. Nothing else waits: llvmpipe's contexts share one
-    // rasterizer, so this waits for the window's tile under way too.
+    // finished with them: a swap's. llvmpipe's contexts share one
+    // rasterizer, so glFinish also waits for the window's tile under way
+    // (seconds of a heavy shader's), which a build that swaps nothing need not.
     if (status_ == ReloadStatus::Swapped) glFinish();
     glfwMakeContextCurrent(nullptr);
     done_ = true;
