@@ -180,13 +180,15 @@ ImageTextures::Key ImageTextures::key_of(const ChannelSpec& spec) {
   return {spec.path, spec.shape, spec.shape == ChannelSpec::Shape::Flat && spec.sampler.vflip};
 }
 
-std::optional<ImageTextures::Entry> ImageTextures::read(const ChannelSpec& spec, std::string* error) {
+ImageTextures::Entry ImageTextures::read(const ChannelSpec& spec) {
   std::vector<std::filesystem::file_time_type> stamps = stamps_of(spec);  // before reading: a later write is seen
-  std::optional<Entry> entry = spec.shape == ChannelSpec::Shape::Cube     ? cube_texture(spec, error)
-                               : spec.shape == ChannelSpec::Shape::Volume ? volume_texture(spec, error)
-                                                                          : flat_texture(spec, error);
-  if (entry) entry->stamps = std::move(stamps);
-  return entry;
+  std::string error;
+  std::optional<Entry> entry = spec.shape == ChannelSpec::Shape::Cube     ? cube_texture(spec, &error)
+                               : spec.shape == ChannelSpec::Shape::Volume ? volume_texture(spec, &error)
+                                                                          : flat_texture(spec, &error);
+  if (!entry) entry.emplace().error = std::move(error);
+  entry->stamps = std::move(stamps);
+  return std::move(*entry);
 }
 
 const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::string* error, bool* reread) {
@@ -194,14 +196,15 @@ const ImageTextures::Entry* ImageTextures::get(const ChannelSpec& spec, std::str
   const std::vector<std::filesystem::file_time_type> stamps = stamps_of(spec);
   auto it = entries_.find(key);
   if (it != entries_.end() && it->second.stamps == stamps) return &it->second;
-  std::optional<Entry> entry;
-  if (auto ready = handed_over_.find(key); ready != handed_over_.end() && ready->second.stamps == stamps)
-    entry = std::move(ready->second);
-  else entry = read(spec, error);
+  const auto ready = handed_over_.find(key);
+  Entry entry = ready != handed_over_.end() && ready->second.stamps == stamps ? std::move(ready->second) : read(spec);
   handed_over_.erase(key);
-  if (!entry) return it != entries_.end() ? &it->second : nullptr;  // a bad save keeps the last good image
+  if (!entry.texture) {
+    *error = std::move(entry.error);
+    return it != entries_.end() ? &it->second : nullptr;  // a bad save keeps the last good image
+  }
   if (reread) *reread = true;
-  entries_.insert_or_assign(key, std::move(*entry));
+  entries_.insert_or_assign(key, std::move(entry));
   return &entries_.at(key);
 }
 

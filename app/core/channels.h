@@ -41,6 +41,7 @@ class ImageTextures {
     gl::Texture texture;
     glm::vec3 resolution{0.0f};  // a cube map's face size, a volume's depth in z
     std::vector<std::filesystem::file_time_type> stamps;  // of its file (or six face files) when read
+    std::string error;  // why not, where the file could not be read: then no texture
   };
   // The texture of `spec` (an Image spec), read now if it was not before or
   // if its file changed since (*reread is then set); nullptr with *error
@@ -57,7 +58,8 @@ class ImageTextures {
   // sizes; stale() says whether get() would read the file of `spec` now,
   // safe on any thread with a copy of held(); read() reads one as get()
   // would, and hand_over() gives what it read to the next get()s, which
-  // take it where the files have not changed again.
+  // take it where the files have not changed again: a texture, or why
+  // there is none (a broken file is not read again on the graph's thread).
   using Key = std::tuple<std::filesystem::path, ChannelSpec::Shape, bool>;  // specs read as one texture
   static Key key_of(const ChannelSpec& spec);
   struct Held {
@@ -67,7 +69,7 @@ class ImageTextures {
   using HeldImages = std::map<Key, Held>;
   HeldImages held() const;
   static bool stale(const ChannelSpec& spec, const HeldImages& held);
-  static std::optional<Entry> read(const ChannelSpec& spec, std::string* error);
+  static Entry read(const ChannelSpec& spec);
   void hand_over(std::vector<std::pair<ChannelSpec, Entry>> read);
 
  private:

@@ -274,17 +274,15 @@ class WindowApp {
   // On the builder: the texture of a channel image the build binds, read
   // there where the graph has not read it or it changed on disk since
   // (`held`: the graph's images when the build started), once a build; the
-  // graph takes it. 0 where the graph's own is current. A large image held
-  // the window for its decoding and upload (4096x4096 noise: 1.2 s). One
-  // that cannot be read is left to the graph, which says why.
+  // graph takes it. 0 where the graph's own is current, or where the file
+  // cannot be read: the graph then says why, without reading it again. A
+  // large image held the window for its decoding and upload (4096x4096
+  // noise: 1.2 s).
   GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::HeldImages& held) {
     if (!ImageTextures::stale(spec, held)) return 0;
     for (const auto& [done, texture] : images_read_)
       if (ImageTextures::key_of(done) == ImageTextures::key_of(spec)) return texture.texture.get();
-    std::string error;
-    std::optional<ImageTextures::Entry> texture = ImageTextures::read(spec, &error);
-    if (!texture) return 0;
-    images_read_.emplace_back(spec, std::move(*texture));
+    images_read_.emplace_back(spec, ImageTextures::read(spec));
     return images_read_.back().second.texture.get();
   }
 

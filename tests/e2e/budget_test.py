@@ -10,7 +10,9 @@ second or more starts its build at once, not after the tile (the twins
 built in the background make way for it); a smallest tile slower than
 --tile-limit is reported as too slow with the file, and the window keeps
 going; a save of a shader slow to compile, and then a macro bomb, are
-built while the running one keeps drawing, and Q during such a build,
+built while the running one keeps drawing, as is a large channel image
+changed on disk, and a broken save of it is reported once, without the
+window decoding it again; Q during such a build,
 or while the first program compiles, quits within 1 s; with --refine 0 and
 the interface hidden, the window's first draw of a new program does not
 compile it again (it drew straight into the window's format, which the
@@ -411,6 +413,24 @@ def image_read_beside_the_window(work):
     shot = take_screenshot(window, out)
     colour, _ = mean_colour(shot) if shot else (None, None)
     check("... and the window shows it", colour is not None and colour[0] > 0.4 and colour[1] < 0.2, colour)
+    # A broken save of it (cut short): the builder finds it broken, and the
+    # window says so without decoding it again itself (it did, on its thread).
+    with open(os.path.join(work, "noise.png"), "rb") as f:
+        cut = f.read()
+    with open(os.path.join(work, "cut.png"), "wb") as f:
+        f.write(cut[:len(cut) * 9 // 10])
+    log_before = len(open(err).read())
+    os.rename(os.path.join(work, "cut.png"), os.path.join(work, "noise.png"))
+    said = wait_for(lambda: re.search(r"raymarching: error: [^\n]*noise\.png[^\n]*\n", open(err).read()[log_before:]),
+                    timeout=30)
+    check("a broken save of the image is reported", bool(said), open(err).read()[-500:])
+    time.sleep(0.5)
+    after = open(err).read()[log_before:]
+    stamps = [int(t) for t in re.findall(r"^raymarching: (?:building generation \d+|picture .* done) at (\d+)", after, re.M)]
+    gap = max((b - a for a, b in zip(stamps, stamps[1:])), default=None)
+    print(f"     {said.group(0).strip() if said else None}; pictures meanwhile at most {(gap or 0) / 1e6:.0f} ms apart")
+    check("... once, while the window keeps drawing", said and after.count("noise.png") == 1 and gap is not None
+          and gap < 300e6, f"{after.count('noise.png')} lines, a gap of {(gap or 0) / 1e6:.0f} ms")
     xdotool("key", "--window", window, "q")
     check("and Q quits", proc.wait(timeout=10) == 0)
 

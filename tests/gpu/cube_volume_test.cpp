@@ -275,12 +275,11 @@ TEST_F(Cubes, AnImageReadElsewhereIsTakenWhileItsFileIsAsRead) {
   auto read_elsewhere = [&] {
     const std::vector<ChannelSpec> changed = stale();
     EXPECT_EQ(changed.size(), 1u);
-    std::string error;
-    std::optional<ImageTextures::Entry> read = ImageTextures::read(changed.at(0), &error);
-    EXPECT_TRUE(read) << error;
-    const GLuint texture = read->texture.get();
+    ImageTextures::Entry read = ImageTextures::read(changed.at(0));
+    EXPECT_TRUE(read.texture) << read.error;
+    const GLuint texture = read.texture.get();
     std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> handed;
-    handed.emplace_back(changed[0], std::move(*read));
+    handed.emplace_back(changed[0], std::move(read));
     graph_.hand_over(std::move(handed));
     return texture;
   };
@@ -304,6 +303,38 @@ TEST_F(Cubes, AnImageReadElsewhereIsTakenWhileItsFileIsAsRead) {
   ASSERT_TRUE(graph_.update(*project_, &error)) << error;
   EXPECT_NE(graph_.pass_states(*project_).at(dir_ / "image.frag").channels[0].texture, blue_as_read);
   EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(1, 1, 0, 1)) << "read again";
+}
+
+// A file the builder could not read is handed over as such: the graph says
+// why without reading it again on the window's thread (a broken image is
+// decoded as far as it goes, a second time).
+TEST_F(Cubes, AFileThatCouldNotBeReadElsewhereIsNotReadAgain) {
+  write("tex.png", Image{1, 1, {1, 0, 0, 1}});
+  write_file(dir_ / "image.frag", "#pragma channel0 \"tex.png\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, vec2(0.5)); }\n");
+  EXPECT_EQ(at(render("image.frag", 1), 0), glm::vec4(1, 0, 0, 1));
+  const ChannelSpec spec = project_->images_read().at(0);
+  write_file(dir_ / "tex.png", "not a PNG");
+  const auto broken = fs::last_write_time(dir_ / "tex.png") + std::chrono::seconds(2);
+  fs::last_write_time(dir_ / "tex.png", broken);
+  ImageTextures::Entry read = ImageTextures::read(spec);
+  ASSERT_FALSE(read.texture);
+  ASSERT_FALSE(read.error.empty());
+  const std::string why = read.error;
+  std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> handed;
+  handed.emplace_back(spec, std::move(read));
+  graph_.hand_over(std::move(handed));
+  // Good again, with the stamp the builder read: a graph that read the file would take it.
+  write("tex.png", Image{1, 1, {0, 1, 0, 1}});
+  fs::last_write_time(dir_ / "tex.png", broken);
+  FrameInputs in;
+  in.resolution = glm::vec3(1, 1, 1);
+  std::string error;
+  EXPECT_FALSE(graph_.update(*project_, &error)) << "not read again";
+  EXPECT_NE(error.find(why), std::string::npos) << error;
+  EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(1, 0, 0, 1)) << "the last good image";
+  ASSERT_TRUE(graph_.update(*project_, &error)) << "nothing handed over: read, " << error;
+  EXPECT_EQ(at(graph_.render_frame(*project_, in, {1, 1}), 0), glm::vec4(0, 1, 0, 1));
 }
 
 TEST_F(Cubes, TheFaceFilesOfACubeMapAreWatched) {
