@@ -727,9 +727,10 @@ class WindowApp {
 
   // Waits for the tile just drawn, of a picture or a shot. A save that
   // comes meanwhile starts its build at once, beside the tile, not once the
-  // slice is done (a heavy shader's tile may take seconds). Twins, which change nothing on screen,
-  // are taken to make way for it; a program waits for the tile's end. On
-  // the builder only: a build in place would swap programs mid-picture.
+  // slice is done (a heavy shader's tile may take seconds). Twins, which
+  // change nothing on screen, are taken to make way for it; a program waits
+  // for the tile's end. On the builder only: a build in place would swap
+  // programs mid-picture.
   void finish_tile() {
     if (!builder_.available()) {
       glFinish();
