@@ -43,12 +43,17 @@ std::string printable(std::string_view text) {
   return out;
 }
 
-std::string Diagnostic::str() const {
+std::string Diagnostic::place() const {
   std::string out = path.empty() ? std::string("raymarching") : printable(path);
   if (line > 0) {
     out += ':' + std::to_string(line);
     if (column > 0) out += ':' + std::to_string(column);
   }
+  return out;
+}
+
+std::string Diagnostic::str() const {
+  std::string out = place();
   out += severity == Severity::Error ? ": error: " : ": warning: ";
   out += printable(message);
   return out;

@@ -19,6 +19,8 @@ struct Diagnostic {
   int column = 0;    // 1-based; 0 when unknown
   std::string message;
 
+  // "path:line:col" (only what is known; "raymarching" for no path).
+  std::string place() const;
   // One line, in the form editors' quickfix lists parse. Control characters
   // and bytes that are not UTF-8 (glslang quotes them from the code) are
   // written as \xNN, so the line stays one line and prints cleanly.

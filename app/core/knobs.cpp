@@ -81,9 +81,9 @@ std::vector<Define> preset_knobs(const std::string& preset, const fs::path& shad
   // preprocessor reads the scene by its absolute path).
   const fs::path scene = fs::absolute(shaderlib_dir / "<preset>").lexically_normal();
   FileSystem files = disk_file_system();
-  files.read = [scene, disk = files.read](const fs::path& path, std::string* error) -> std::optional<std::string> {
+  files.read = [scene, disk = files.read](const fs::path& path, Diagnostic* why) -> std::optional<std::string> {
     if (path == scene) return std::string("#include <rm/quality.glsl>\nvoid mainImage(out vec4 c, in vec2 f) {}\n");
-    return disk(path, error);
+    return disk(path, why);
   };
   SourceOptions options;
   options.shaderlib_dir = shaderlib_dir;

@@ -104,17 +104,20 @@ Sampler sampler_of(const json& input, ChannelSpec::Kind kind, ChannelSpec::Shape
   return s;
 }
 
-std::string line_col(const std::string& text, size_t byte) {
-  int line = 1, col = 1;
+// An error at the line and column of `byte` of the text.
+Diagnostic error_at(const std::string& text, size_t byte, std::string message) {
+  Diagnostic d;
+  d.line = d.column = 1;
   for (size_t i = 0; i < byte && i < text.size(); ++i) {
     if (text[i] == '\n') {
-      ++line;
-      col = 1;
+      ++d.line;
+      d.column = 1;
     } else {
-      ++col;
+      ++d.column;
     }
   }
-  return std::to_string(line) + ":" + std::to_string(col);
+  d.message = std::move(message);
+  return d;
 }
 
 }  // namespace
@@ -128,9 +131,12 @@ bool is_media_stand_in(const std::filesystem::path& pass) {
 bool is_shadertoy_json(const std::filesystem::path& path) { return path.extension() == ".json"; }
 
 std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,
-                                                    std::string* error) {
+                                                    Diagnostic* error) {
   if (const auto deep = json_nested_too_deep(text)) {
-    *error = std::to_string(deep->line) + ":" + std::to_string(deep->column) + ": " + deep->message;
+    *error = Diagnostic{};
+    error->line = deep->line;
+    error->column = deep->column;
+    error->message = deep->message;
     return std::nullopt;
   }
   json doc;
@@ -139,23 +145,21 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
   } catch (const json::parse_error& e) {
     const std::string what = e.what();
     const size_t colon = what.find("syntax error");
-    *error = line_col(text, e.byte > 0 ? e.byte - 1 : 0) + ": " +
-             (colon == std::string::npos ? what : what.substr(colon));
+    *error = error_at(text, e.byte > 0 ? e.byte - 1 : 0, colon == std::string::npos ? what : what.substr(colon));
     return std::nullopt;
   } catch (const json::out_of_range& e) {
     // A number past a double's range: "number overflow parsing '1e999'", which names no place.
     const std::string what = e.what();
     const size_t open = what.find('\''), close = what.rfind('\'');
     const std::string number = open < close ? what.substr(open + 1, close - open - 1) : "";
-    *error = line_col(text, number.empty() ? 0 : text.find(number)) + ": the number " + number +
-             " is too large for a double";
+    *error = error_at(text, number.empty() ? 0 : text.find(number), "the number " + number + " is too large for a double");
     return std::nullopt;
   }
   // {"Shader": {...}}, the shader itself, or a list of shaders (the first).
   if (doc.is_array() && !doc.empty()) doc = doc[0];
   if (doc.is_object() && doc.contains("Shader")) doc = doc["Shader"];
   if (!doc.is_object() || !doc.contains("renderpass") || !doc["renderpass"].is_array()) {
-    *error = "1:1: not a Shadertoy shader: no \"renderpass\" list";
+    *error = error_at(text, 0, "not a Shadertoy shader: no \"renderpass\" list");
     return std::nullopt;
   }
   ShadertoyProject project;
@@ -206,7 +210,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
   bool has_image = false;
   for (const PassText& p : passes) has_image = has_image || p.file == ShadertoyProject::kImage;
   if (!has_image) {
-    *error = "1:1: the shader has no image pass";
+    *error = error_at(text, 0, "the shader has no image pass");
     return std::nullopt;
   }
 
@@ -302,9 +306,10 @@ std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path&
                                                     const std::filesystem::path& media_dir, std::string* error) {
   auto text = read_shader_file(json_path, error);
   if (!text) return std::nullopt;
-  std::string why;
+  Diagnostic why;
   auto project = read_shadertoy_json(*text, media_dir, &why);
-  if (!project) *error = json_path.string() + ":" + why;
+  why.path = json_path.string();
+  if (!project) *error = why.place() + ": " + why.message;
   return project;
 }
 
@@ -321,7 +326,7 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
   struct Parsed {
     std::string text;
     std::optional<ShadertoyProject> project;
-    std::string error;
+    Diagnostic error;  // in the JSON, where it did not parse
   };
   auto cache = std::make_shared<Parsed>();
   auto project = [=]() -> const Parsed& {
@@ -330,26 +335,26 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
     if (!text) {
       cache->text.clear();
       cache->project.reset();
-      cache->error = error;
+      cache->error = Diagnostic{};
+      cache->error.message = "cannot read scene: " + error;
     } else if (!cache->project || *text != cache->text) {
-      cache->error.clear();
       cache->project = read_shadertoy_json(*text, media_dir, &cache->error);
-      if (!cache->project) cache->error = root.string() + ":" + cache->error;
       cache->text = std::move(*text);
     }
+    cache->error.path = root.string();
     return *cache;
   };
   FileSystem files;
-  files.read = [=](const std::filesystem::path& path, std::string* error) -> std::optional<std::string> {
-    if (!inside(path)) return disk.read(path, error);
+  files.read = [=](const std::filesystem::path& path, Diagnostic* why) -> std::optional<std::string> {
+    if (!inside(path)) return disk.read(path, why);
     const Parsed& parsed = project();
     if (!parsed.project) {
-      *error = parsed.error;
+      *why = parsed.error;
       return std::nullopt;
     }
     auto it = parsed.project->files.find(path.filename().string());
     if (it == parsed.project->files.end()) {
-      *error = "no such pass in the JSON";
+      why->message = "no such pass in the JSON";
       return std::nullopt;
     }
     return it->second;

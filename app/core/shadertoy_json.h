@@ -34,12 +34,13 @@ struct ShadertoyProject {
 
 // Reads the JSON text. Media that only shadertoy.com serves (/media/a/NAME)
 // is looked up by file name in `media_dir`; a missing one is replaced by a
-// stand-in and warned about. nullopt with *error ("LINE:COL: why") on JSON
-// that does not parse or holds no image pass.
+// stand-in and warned about. nullopt with *error (its line, column and
+// message; no path) on JSON that does not parse or holds no image pass.
 std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, const std::filesystem::path& media_dir,
-                                                    std::string* error);
+                                                    Diagnostic* error);
 
-// Reads a .json file from disk (a regular file, within the shader size limit).
+// Reads a .json file from disk (a regular file, within the shader size
+// limit); nullopt with *error ("PATH:LINE:COL: why", or the read's error).
 std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path& json,
                                                     const std::filesystem::path& media_dir, std::string* error);
 

@@ -248,18 +248,18 @@ class Preprocessor {
 
   // Reads one file and appends its lines, expanding includes in place.
   void include_file(const fs::path& path, int from_file, int from_line, int from_col) {
-    std::string read_error;
-    std::optional<std::string> bytes = fs_.read(path, &read_error);
+    Diagnostic why;
+    std::optional<std::string> bytes = fs_.read(path, &why);
     if (bytes && total_bytes_ + bytes->size() > kMaxShaderBytes) {
-      read_error = "the scene with its includes would be " + over_the_limit(total_bytes_ + bytes->size()).substr(3);
+      why = {};
+      why.message = "the scene with its includes would be " + over_the_limit(total_bytes_ + bytes->size()).substr(3);
       bytes.reset();
     }
     if (!bytes) {
-      if (from_file < 0) {
-        error(add_file(path), 0, 0, "cannot read scene: " + read_error);
-      } else {
-        error(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + read_error);
-      }
+      const int file = from_file < 0 ? add_file(path) : -1;
+      if (!why.path.empty()) out_.errors.push_back(std::move(why));  // where the cause is: the JSON's line
+      else if (from_file < 0) error(file, 0, 0, "cannot read scene: " + why.message);
+      else error(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + why.message);
       return;
     }
     total_bytes_ += bytes->size();
@@ -508,8 +508,8 @@ const char* to_string(ShaderKind kind) {
 
 FileSystem disk_file_system() {
   FileSystem disk;
-  disk.read = [](const fs::path& path, std::string* error) {
-    return read_shader_file(path, error);
+  disk.read = [](const fs::path& path, Diagnostic* why) {
+    return read_shader_file(path, &why->message);
   };
   disk.exists = [](const fs::path& path) {
     std::error_code ec;

@@ -66,8 +66,10 @@ struct SourceOptions {
 // File access, injectable so tests and fuzzers can use an in-memory tree.
 // The disk's reads only regular files of at most kMaxShaderBytes (core/files.h).
 struct FileSystem {
-  // The file's bytes, or nullopt with *error set ("no such file", "is a directory", ...).
-  std::function<std::optional<std::string>(const fs::path&, std::string* error)> read;
+  // The file's bytes, or nullopt with why->message set ("no such file", "is
+  // a directory", ...). why->path is set only where the cause lies in another
+  // file, with its place: a pass of a Shadertoy JSON that does not parse.
+  std::function<std::optional<std::string>(const fs::path&, Diagnostic* why)> read;
   std::function<bool(const fs::path&)> exists;
 };
 FileSystem disk_file_system();

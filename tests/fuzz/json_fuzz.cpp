@@ -15,10 +15,11 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  std::string error;
+  rm::Diagnostic error;
   const auto project = rm::read_shadertoy_json(text, "/fuzz/media", &error);
   if (!project) {
-    if (error.empty() || error.find('\n') != std::string::npos || error.find(':') == std::string::npos) std::abort();
+    if (error.message.empty() || error.message.find('\n') != std::string::npos || error.line < 1 || error.column < 1)
+      std::abort();
     return 0;
   }
   if (!project->files.count(rm::ShadertoyProject::kImage)) std::abort();
@@ -28,11 +29,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   const std::string root = "/fuzz/project.json/";
   rm::FileSystem memory;
-  memory.read = [&](const std::filesystem::path& path, std::string* why) -> std::optional<std::string> {
+  memory.read = [&](const std::filesystem::path& path, rm::Diagnostic* why) -> std::optional<std::string> {
     const std::string key = path.lexically_normal().string();
     if (key.rfind(root, 0) == 0)
       if (auto it = project->files.find(key.substr(root.size())); it != project->files.end()) return it->second;
-    *why = "no such file";
+    why->message = "no such file";
     return std::nullopt;
   };
   memory.exists = [&](const std::filesystem::path& path) {

@@ -59,15 +59,15 @@ std::map<std::string, std::string> split_files(const std::string& input) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto files = split_files(std::string(reinterpret_cast<const char*>(data), size));
   rm::FileSystem memory;
-  memory.read = [&files](const std::filesystem::path& path, std::string* error) -> std::optional<std::string> {
+  memory.read = [&files](const std::filesystem::path& path, rm::Diagnostic* why) -> std::optional<std::string> {
     const std::string key = path.lexically_normal().string();
     if (files.count(key + "/") || (!key.empty() && key.back() == '/')) {
-      *error = "is a directory";
+      why->message = "is a directory";
       return std::nullopt;
     }
     auto it = files.find(key);
     if (it == files.end()) {
-      *error = "no such file";
+      why->message = "no such file";
       return std::nullopt;
     }
     return it->second;

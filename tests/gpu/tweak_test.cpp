@@ -365,9 +365,9 @@ class ExampleTwin : public TweakGpu, public ::testing::WithParamInterface<std::s
     const fs::path path = original();
     bool edit = false;
     FileSystem files = disk_file_system();
-    files.read = [&, disk = files.read](const fs::path& p, std::string* error) -> std::optional<std::string> {
+    files.read = [&, disk = files.read](const fs::path& p, Diagnostic* why) -> std::optional<std::string> {
       if (edit && p == path) return edited;
-      return disk(p, error);
+      return disk(p, why);
     };
     SourceOptions options;
     options.shaderlib_dir = shaderlib_dir();

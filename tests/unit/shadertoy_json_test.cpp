@@ -8,8 +8,12 @@
 namespace rm {
 namespace {
 
+// The error as "LINE:COL: why".
 std::optional<ShadertoyProject> read(const std::string& text, std::string* error, const fs::path& media = {}) {
-  return read_shadertoy_json(text, media, error);
+  Diagnostic why;
+  auto project = read_shadertoy_json(text, media, &why);
+  *error = std::to_string(why.line) + ":" + std::to_string(why.column) + ": " + why.message;
+  return project;
 }
 
 const char* kProject = R"({"Shader": {
@@ -143,6 +147,29 @@ TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
   // nlohmann throws out_of_range, not a parse error, for this one (found by json_fuzz: an abort).
   EXPECT_FALSE(read("{\"renderpass\": [],\n \"ver\": 5e55555}", &error));
   EXPECT_EQ(error, "2:9: the number 5e55555 is too large for a double");
+}
+
+// A run from the JSON that is saved broken, or is gone, names the JSON at the
+// place that did not parse, as a shader's error names its line: the pass's
+// file (PROJECT.json/image.frag) exists only inside the JSON.
+TEST(ShadertoyJson, AnEditThatDoesNotParseIsAnErrorAtTheJsonsLine) {
+  test::TempDir dir;
+  const fs::path json = dir.path() / "p.json";
+  test::write_file(json, R"({"renderpass": [{"type": "image", "code": "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }"}]})");
+  const FileSystem files = shadertoy_file_system(json, {});
+  const fs::path image = json / ShadertoyProject::kImage;
+  EXPECT_TRUE(preprocess(image, {}, files).ok());
+
+  test::write_file(json, "{\"renderpass\": [\n  {\"type\": \"image\",, }]}");
+  Source broken = preprocess(image, {}, files);
+  ASSERT_EQ(broken.errors.size(), 1u);
+  EXPECT_EQ(broken.errors[0].place(), json.string() + ":2:20") << broken.errors[0].str();
+  EXPECT_EQ(broken.errors[0].message.rfind("syntax error", 0), 0u) << broken.errors[0].str();
+
+  fs::remove(json);
+  broken = preprocess(image, {}, files);
+  ASSERT_EQ(broken.errors.size(), 1u);
+  EXPECT_EQ(broken.errors[0].str(), json.string() + ": error: cannot read scene: no such file");
 }
 
 // A million '[' parsed, and the value copied, overflowed the stack (a crash).

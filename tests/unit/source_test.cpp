@@ -275,10 +275,10 @@ TEST(Source, CrLfLineEndingsKeepLineNumbers) {
 
 TEST(Source, InMemoryFileSystemIsUsedForEveryRead) {
   FileSystem memory;
-  memory.read = [](const fs::path& p, std::string* error) -> std::optional<std::string> {
+  memory.read = [](const fs::path& p, Diagnostic* why) -> std::optional<std::string> {
     if (p == "/mem/scene.frag") return std::string("#include \"x.glsl\"\n") + kMain;
     if (p == "/mem/x.glsl") return std::string("float mem_marker;\n");
-    *error = "no such file";
+    why->message = "no such file";
     return std::nullopt;
   };
   memory.exists = [](const fs::path& p) { return p == "/mem/scene.frag" || p == "/mem/x.glsl"; };

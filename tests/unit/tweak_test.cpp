@@ -17,9 +17,9 @@ Source source_of(const std::string& scene, const std::string& library = "float l
   const std::string text = scene.substr(0, body) + "#include <rm/x.glsl>\n" + scene.substr(body);
   const std::map<fs::path, std::string> files{{"/s/scene.frag", text},
                                                {"/lib/rm/x.glsl", library}};
-  memory.read = [files](const fs::path& p, std::string* error) -> std::optional<std::string> {
+  memory.read = [files](const fs::path& p, Diagnostic* why) -> std::optional<std::string> {
     if (auto it = files.find(p); it != files.end()) return it->second;
-    *error = "no such file";
+    why->message = "no such file";
     return std::nullopt;
   };
   memory.exists = [files](const fs::path& p) { return files.count(p) != 0; };
