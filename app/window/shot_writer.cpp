@@ -1,10 +1,11 @@
 #include "window/shot_writer.h"
 
-#include <chrono>
 #include <iostream>
 #include <new>
 #include <optional>
 #include <string>
+
+#include "window/steady_ns.h"
 
 namespace rm {
 
@@ -37,7 +38,7 @@ void ShotWriter::run() {
       shot = std::move(queue_.front());
       queue_.pop_front();
     }
-    const auto start = std::chrono::steady_clock::now();
+    const long long start = steady_ns();
     std::string error = "not enough memory to write it";
     std::optional<std::filesystem::path> written;
     try {
@@ -48,11 +49,9 @@ void ShotWriter::run() {
     if (written) std::cout << ("screenshot: " + written->string() + "\n") << std::flush;
     else std::cerr << ("raymarching: error: screenshot: " + error + "\n");
     if (verbose_) {
-      const auto end = std::chrono::steady_clock::now();
-      std::cerr << ("raymarching: screenshot writer done in " +
-                    std::to_string(std::chrono::duration<double, std::milli>(end - start).count()) + " ms at " +
-                    std::to_string(std::chrono::duration_cast<std::chrono::nanoseconds>(end.time_since_epoch()).count()) +
-                    "\n");
+      const long long end = steady_ns();
+      std::cerr << ("raymarching: screenshot writer done in " + std::to_string((end - start) / 1e6) + " ms at " +
+                    std::to_string(end) + "\n");
     }
   }
 }

@@ -40,6 +40,7 @@
 #include "window/key_codes.h"
 #include "window/panels.h"
 #include "window/shot_writer.h"
+#include "window/steady_ns.h"
 #include "window/take_recorder.h"
 #include "window/tiled_shot.h"
 #include "window/ui.h"
@@ -66,11 +67,6 @@ const char* window_keys_help() {
 }
 
 namespace {
-
-long long steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 bool mesa_cache_disabled() {
   for (const char* name : {"MESA_SHADER_CACHE_DISABLE", "MESA_GLSL_CACHE_DISABLE"}) {
