@@ -191,7 +191,8 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
       passes.push_back({ShadertoyProject::kImage, &pass});
     } else if (type == "buffer") {
       int index = buffer_index_of_name(name);
-      if (index < 0 && pass.contains("outputs") && pass["outputs"].is_array() && !pass["outputs"].empty()) {
+      if (index < 0 && pass.contains("outputs") && pass["outputs"].is_array() && !pass["outputs"].empty() &&
+          pass["outputs"][0].is_object()) {
         const std::string id = text_of(pass["outputs"][0].value("id", json()));
         if (id >= "257" && id <= "260" && id.size() == 3) index = id[2] - '7';
       }

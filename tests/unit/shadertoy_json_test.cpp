@@ -149,6 +149,20 @@ TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
   EXPECT_EQ(error, "2:9: the number 5e55555 is too large for a double");
 }
 
+// A JSON edited by hand may put anything where an object was: each such
+// value is read as missing, never thrown out of the reader (a window saved
+// with an output of null was ended by nlohmann's type_error).
+TEST(ShadertoyJson, ANullWhereAnObjectWasIsReadAsMissing) {
+  std::string error;
+  const std::string image = R"({"type": "image", "code": "x", "inputs": [null, 3, {"channel": 0, "ctype": "buffer", "id": null}]})";
+  for (const std::string outputs : {"[null]", "[3]", "[[]]", "null", "{}"}) {
+    auto p = read(R"({"renderpass": [)" + image + R"(, {"type": "buffer", "name": "X", "outputs": )" + outputs + "}]}",
+                  &error);
+    ASSERT_TRUE(p) << outputs << ": " << error;
+    EXPECT_EQ(p->warnings.front(), "buffer pass 'X' is not Buffer A to D; it is left out") << outputs;
+  }
+}
+
 // A run from the JSON that is saved broken, or is gone, names the JSON at the
 // place that did not parse, as a shader's error names its line: the pass's
 // file (PROJECT.json/image.frag) exists only inside the JSON.
