@@ -1,6 +1,5 @@
 #include "commands/cli_options.h"
 
-#include <iostream>
 
 #include "core/shadertoy_json.h"
 
@@ -147,9 +146,7 @@ std::chrono::system_clock::time_point parse_date(const std::string& text) {
 void check_project_file(const std::filesystem::path& path, const std::filesystem::path& media_dir) {
   if (!is_shadertoy_json(path)) return;
   std::string error;
-  auto project = read_shadertoy_file(path, media_dir, &error);
-  if (!project) throw UsageError{error};
-  for (const std::string& warning : project->warnings) std::cerr << "raymarching: warning: " << warning << '\n';
+  if (!read_shadertoy_file(path, media_dir, &error)) throw UsageError{error};
 }
 
 void require_readable_file(const fs::path& path) {

@@ -35,8 +35,11 @@ std::chrono::system_clock::time_point parse_date(const std::string& text);
 // (exit 2), not a shader error.
 void require_readable_file(const std::filesystem::path& path);
 
-// A Shadertoy .json is read once up front: malformed JSON is a usage error
-// (exit 2, with its line and column) and each stand-in is one warning.
+// A Shadertoy .json that `render` or `check` runs is read once up front:
+// malformed JSON is a usage error (exit 2, with its line and column). Its
+// warnings (stand-ins) come with the build's diagnostics. The window does not
+// ask: it opens with the JSON's error and waits for a save that mends it, as
+// it does for a broken shader.
 void check_project_file(const std::filesystem::path& path, const std::filesystem::path& media_dir);
 
 // -I DIR, -D NAME[=VALUE], -U NAME and --quality, as a C compiler takes the

@@ -25,7 +25,9 @@ int ImportCommand::run() const {
   std::string error;
   auto project = read_shadertoy_file(json_, media_, &error);
   if (!project) throw UsageError{error};
-  for (const std::string& warning : project->warnings) std::cerr << "raymarching: warning: " << warning << '\n';
+  // At the JSON, as a build of it says them.
+  for (const std::string& warning : project->warnings)
+    std::cerr << Diagnostic{Severity::Warning, json_, 0, 0, warning}.str() << '\n';
   const std::filesystem::path dir = dir_;
   std::error_code made, probed;
   std::filesystem::create_directories(dir, made);

@@ -37,7 +37,6 @@ int WindowCommand::run() const {
   opts.scene = scene_.empty() ? default_scene() : std::filesystem::path(scene_);
   require_readable_file(opts.scene);
   opts.media = media_;
-  check_project_file(opts.scene, opts.media);
   opts.source = source_.source();
   opts.size = parse_size(size_, "--size");
   opts.shot_dir = shot_dir_;

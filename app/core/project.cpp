@@ -125,6 +125,10 @@ PassWalk walk_passes(const fs::path& image, const std::function<const Source*(co
 
 Source check_project(const ProjectFiles& from, const SourceOptions& options, Diagnostics* diags) {
   const SourceOptions with_common = with_forced(options, from.forced_includes);
+  if (from.files.warnings) {
+    const Diagnostics warnings = from.files.warnings();
+    diags->insert(diags->end(), warnings.begin(), warnings.end());
+  }
   std::map<fs::path, Source> sources;
   const fs::path image = fs::absolute(from.image).lexically_normal();  // as the passes name each other
   walk_passes(
@@ -149,7 +153,7 @@ ReloadStatus Project::reload() {
 
 ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled) {
   pending_.reset();
-  diagnostics_.clear();
+  diagnostics_ = files_.warnings ? files_.warnings() : Diagnostics{};
   times_ = {};
   std::array<bool, 4> channels_given{};
   for (size_t c = 0; c < 4; ++c) channels_given[c] = !channel_overrides_[c].empty();

@@ -365,6 +365,14 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
     const Parsed& parsed = project();
     return parsed.project && parsed.project->files.count(path.filename().string()) > 0;
   };
+  files.warnings = [=] {
+    Diagnostics out;
+    const Parsed& parsed = project();
+    if (parsed.project)
+      for (const std::string& warning : parsed.project->warnings)
+        out.push_back(Diagnostic{Severity::Warning, root.string(), 0, 0, warning});
+    return out;
+  };
   return files;
 }
 

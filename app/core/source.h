@@ -71,6 +71,9 @@ struct FileSystem {
   // file, with its place: a pass of a Shadertoy JSON that does not parse.
   std::function<std::optional<std::string>(const fs::path&, Diagnostic* why)> read;
   std::function<bool(const fs::path&)> exists;
+  // What the files themselves warn about, read anew at each build (a JSON's
+  // stand-ins and left-out inputs); empty, or unset, for the disk.
+  std::function<Diagnostics()> warnings;
 };
 FileSystem disk_file_system();
 

@@ -15,7 +15,8 @@ stale badge. Right steps a paused animated scene, drawn again. A second window s
 image a scene names with #pragma channel0 when no --channel0 is given. A
 project of three passes: a drag paints into a feedback buffer and F12 shows
 it, a key reaches the shader, and a number edit of one buffer tweaks and
-then rebuilds only it.
+then rebuilds only it. A Shadertoy JSON saved half-written opens with its
+error at its line and column, and the save that mends it shows.
 The interface (Dear ImGui), compared on the X screen itself (xwd) with F12:
 hidden it is exactly F12; a broken save puts text over the kept picture and
 the fix takes it away; a slider drag changes the picture, not iMouse, and
@@ -300,6 +301,41 @@ def project_session():
     # Q belongs to the shader in a keyboard project.
     status = quit_with(proc, window, "Escape")
     check("Esc quits a keyboard project with status 0", status == 0, status)
+
+
+# A Shadertoy export whose image pass reads a webcam, which is not supported.
+JSON_PROJECT = ('{"Shader": {"renderpass": [{"type": "image", "code": '
+                '"void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.5, 0.75, 1.0); }", '
+                '"inputs": [{"ctype": "webcam", "channel": 0}], "outputs": [{"id": 37, "channel": 0}]}]}}')
+
+
+def json_session():
+    """A Shadertoy JSON saved half-written opens the window as a broken shader
+    does: its error at the JSON's line and column, the window open and
+    waiting. The save that mends it shows, with its warning said once."""
+    work = tempfile.mkdtemp(prefix="rm-e2e-json-")
+    json = os.path.join(work, "p.json")
+    with open(json, "w") as f:
+        f.write(JSON_PROJECT[:60])
+    err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
+    proc = open_window([BINARY, json, "--size", "200x120", "--shot-dir", work, "-v"], out_path, err_path, work)
+    error = f"{json}:1:61: error: syntax error"
+    window = first_frame_window(proc, "p.json", err_path, marker="reload failed generation 0")
+    check("a JSON that does not parse opens the window with its error at its line and column",
+          window is not None and error in open(err_path).read() and proc.poll() is None, open(err_path).read())
+    if not window:
+        return
+    save_by_rename(json, JSON_PROJECT)
+    shown = wait_for(lambda: "presented generation 1" in open(err_path).read())
+    shot = take_screenshot(window, out_path) if shown else None
+    colour = pixel(shot, 100, 60, work) if shot else None
+    check("... and the save that mends it shows",
+          colour is not None and all(abs(a - b) < 0.01 for a, b in zip(colour, (0.25, 0.5, 0.75))), colour)
+    warning = f"{json}: warning: image.frag iChannel0: input type 'webcam' is not supported; it reads black"
+    check("... with the JSON's warning, once, at the JSON", open(err_path).read().count(warning) == 1,
+          open(err_path).read())
+    status = quit_with(proc, window, "Escape")
+    check("... and Esc quits with status 0", status == 0, status)
 
 
 UI_SCENE = """// ui {n}
@@ -812,6 +848,7 @@ if __name__ == "__main__":
         step_paused_clock()
         scene_default_channel()
         project_session()
+        json_session()
         interface_session()
         knob_session()
         warning_session()

@@ -123,6 +123,9 @@ TEST(ShadertoyProjects, WhatDoesNotRunIsOneWarningEachAndTheRestRuns) {
   EXPECT_EQ(r.at(0, 0, 1), 0.5f);
   EXPECT_EQ(r.at(0, 0, 2), 0.0f) << "the webcam reads black";
   EXPECT_EQ(r.warnings(), 3) << r.outcome.err;
+  EXPECT_NE(r.outcome.err.find("unsupported.json: warning: pass 'Sound' of type 'sound' is not supported yet"),
+            std::string::npos)
+      << "each warning names the JSON: " << r.outcome.err;
 }
 
 TEST(ShadertoyProjects, AnErrorInCommonNamesCommonAndItsLine) {

@@ -2,6 +2,7 @@
 // unordered inputs, sampler settings, media, unknown types, malformed JSON.
 #include <gtest/gtest.h>
 
+#include "core/project.h"
 #include "core/shadertoy_json.h"
 #include "support.h"
 
@@ -184,6 +185,32 @@ TEST(ShadertoyJson, AnEditThatDoesNotParseIsAnErrorAtTheJsonsLine) {
   broken = preprocess(image, {}, files);
   ASSERT_EQ(broken.errors.size(), 1u);
   EXPECT_EQ(broken.errors[0].str(), json.string() + ": error: cannot read scene: no such file");
+}
+
+// A JSON's warnings (a stand-in, a left-out input) are diagnostics at the
+// JSON of each build, read anew as the JSON is saved: `check`, `render` and
+// the window say them through the one path, once each.
+TEST(ShadertoyJson, WarningsComeWithEachBuildAtTheJson) {
+  test::TempDir dir;
+  const fs::path json = dir.path() / "p.json";
+  const std::string image = R"({"type": "image", "code": "void mainImage(out vec4 c, in vec2 f) { c = vec4(1); }")";
+  test::write_file(json, "{\"renderpass\": [" + image + R"(, "inputs": [{"ctype": "webcam", "channel": 0}]}]})");
+  const ProjectFiles files = project_files(json);
+  Diagnostics diags;
+  check_project(files, {}, &diags);
+  ASSERT_EQ(diags.size(), 1u);
+  EXPECT_EQ(diags[0].str(), json.string() + ": warning: image.frag iChannel0: input type 'webcam' is not supported; it reads black");
+
+  test::write_file(json, "{\"renderpass\": [" + image + "}]}");
+  diags.clear();
+  check_project(files, {}, &diags);
+  EXPECT_TRUE(diags.empty()) << join(diags);
+
+  test::write_file(json, "{\"renderpass\": [" + image + R"(, "inputs": [{"ctype": "webcam", "channel": 0}]},)");
+  diags.clear();
+  check_project(files, {}, &diags);
+  ASSERT_EQ(diags.size(), 1u) << join(diags);
+  EXPECT_EQ(diags[0].severity, Severity::Error) << "a JSON that does not parse has no warnings, only its error";
 }
 
 // A million '[' parsed, and the value copied, overflowed the stack (a crash).
