@@ -1,6 +1,5 @@
 #include "commands/cli_options.h"
 
-
 #include "core/shadertoy_json.h"
 
 #include <algorithm>
