@@ -331,6 +331,14 @@ def too_slow_session(work):
     check("and Q quits", proc.wait(timeout=10) == 0)
 
 
+# A gap between pictures this long is a stall of the window, not the
+# scheduler's: while glslang, the driver or a decoder has the cores, the
+# window draws every 100 ms; under the parallel ctest on 2 cores one gap was
+# 307 ms (CI, 2026-11-28). The stalls these checks guard against (a wait
+# for the build, the validation, the read or the write) last seconds.
+STALL_MS = 500
+
+
 def pictures_during(text, begin, end):
     """The pictures drawn between the -v log's lines `begin` and `end` (each
     ending "at NS"): how many, and the longest time without one, in ms."""
@@ -360,7 +368,7 @@ def keeps_drawing_while_building(work):
         pictures, gap, took = built
         print(f"     pictures of the running program during the build: {pictures}, at most {gap:.0f} ms apart; "
               f"the build {took:.0f} ms")
-        check("the running program keeps drawing while the new one compiles", pictures >= 2 and gap < 300,
+        check("the running program keeps drawing while the new one compiles", pictures >= 2 and gap < STALL_MS,
               f"{pictures} pictures, a gap of {gap:.0f} ms")
     check("then the new program is shown", wait_for(lambda: "presented generation 2" in open(err).read()),
           open(err).read()[-500:])
@@ -376,7 +384,7 @@ def keeps_drawing_while_building(work):
         pictures, gap, took = during
         print(f"     {failed.group(1)}; pictures during its validation: {pictures}, at most {gap:.0f} ms apart, "
               f"in {took:.0f} ms")
-        check("the window keeps drawing while glslang works on it", pictures >= 2 and gap < 300,
+        check("the window keeps drawing while glslang works on it", pictures >= 2 and gap < STALL_MS,
               f"{pictures} pictures, a gap of {gap:.0f} ms")
     xdotool("key", "--window", window, "q")
     check("and Q quits", proc.wait(timeout=10) == 0)
@@ -408,7 +416,7 @@ def image_read_beside_the_window(work):
     if during:
         pictures, gap, took = during
         print(f"     pictures while it was read: {pictures}, at most {gap:.0f} ms apart, in {took:.0f} ms")
-        check("... while the window keeps drawing", pictures >= 2 and gap < 300,
+        check("... while the window keeps drawing", pictures >= 2 and gap < STALL_MS,
               f"{pictures} pictures, a gap of {gap:.0f} ms")
     time.sleep(0.3)
     shot = take_screenshot(window, out)
@@ -431,7 +439,7 @@ def image_read_beside_the_window(work):
     gap = max((b - a for a, b in zip(stamps, stamps[1:])), default=None)
     print(f"     {said.group(0).strip() if said else None}; pictures meanwhile at most {(gap or 0) / 1e6:.0f} ms apart")
     check("... once, while the window keeps drawing", said and after.count("noise.png") == 1 and gap is not None
-          and gap < 300e6, f"{after.count('noise.png')} lines, a gap of {(gap or 0) / 1e6:.0f} ms")
+          and gap < STALL_MS * 1e6, f"{after.count('noise.png')} lines, a gap of {(gap or 0) / 1e6:.0f} ms")
     xdotool("key", "--window", window, "q")
     check("and Q quits", proc.wait(timeout=10) == 0)
 
@@ -706,7 +714,7 @@ def shots_written_beside_the_window(work):
     if during:
         pictures, gap, took = during
         print(f"     pictures while it was written: {pictures}, at most {gap:.0f} ms apart, in {took:.0f} ms")
-        check("... while the window keeps drawing", pictures >= 2 and gap < 300,
+        check("... while the window keeps drawing", pictures >= 2 and gap < STALL_MS,
               f"{pictures} pictures, a gap of {gap:.0f} ms")
     # Q while the next one is written: the window goes, the shot is still written whole.
     xdotool("key", "--window", window, "F12")
