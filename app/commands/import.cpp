@@ -26,8 +26,7 @@ int ImportCommand::run() const {
   auto project = read_shadertoy_file(json_, media_, &error);
   if (!project) throw UsageError{error};
   // At the JSON, as a build of it says them.
-  for (const std::string& warning : project->warnings)
-    std::cerr << Diagnostic{Severity::Warning, json_, 0, 0, warning}.str() << '\n';
+  for (const Diagnostic& warning : project->warnings_at(json_)) std::cerr << warning.str() << '\n';
   const std::filesystem::path dir = dir_;
   std::error_code made, probed;
   std::filesystem::create_directories(dir, made);

@@ -303,6 +303,12 @@ std::map<std::string, std::string> ShadertoyProject::files_to_import() const {
   return out;
 }
 
+Diagnostics ShadertoyProject::warnings_at(const std::filesystem::path& json) const {
+  Diagnostics out;
+  for (const std::string& warning : warnings) out.push_back(Diagnostic{Severity::Warning, json.string(), 0, 0, warning});
+  return out;
+}
+
 std::optional<ShadertoyProject> read_shadertoy_file(const std::filesystem::path& json_path,
                                                     const std::filesystem::path& media_dir, std::string* error) {
   auto text = read_shader_file(json_path, error);
@@ -366,12 +372,8 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
     return parsed.project && parsed.project->files.count(path.filename().string()) > 0;
   };
   files.warnings = [=] {
-    Diagnostics out;
     const Parsed& parsed = project();
-    if (parsed.project)
-      for (const std::string& warning : parsed.project->warnings)
-        out.push_back(Diagnostic{Severity::Warning, root.string(), 0, 0, warning});
-    return out;
+    return parsed.project ? parsed.project->warnings_at(root) : Diagnostics{};
   };
   return files;
 }

@@ -30,6 +30,9 @@ struct ShadertoyProject {
   // The files `import` writes: each pass includes common.glsl on its first
   // line, and there is no common.glsl without a Common pass.
   std::map<std::string, std::string> files_to_import() const;
+
+  // The warnings as diagnostics at the JSON, the form a build prints them in.
+  Diagnostics warnings_at(const std::filesystem::path& json) const;
 };
 
 // Reads the JSON text. Media that only shadertoy.com serves (/media/a/NAME)
