@@ -87,20 +87,38 @@ constexpr const char* kCubeFile = "cube_a.frag";
 
 std::string buffer_file(int index) { return std::string("buffer_") + static_cast<char>('a' + index) + ".frag"; }
 
-Sampler sampler_of(const json& input, ChannelSpec::Kind kind, ChannelSpec::Shape shape) {
+// The input's sampler; a setting the export spells in a way Shadertoy does
+// not is one warning, and the default stands.
+Sampler sampler_of(const json& input, ChannelSpec::Kind kind, ChannelSpec::Shape shape, const std::string& where,
+                   std::vector<std::string>* warnings) {
   Sampler s = default_sampler(kind, shape);
   if (!input.contains("sampler") || !input["sampler"].is_object()) return s;
   const json& j = input["sampler"];
-  const std::string filter = j.contains("filter") ? text_of(j["filter"]) : "";
-  const std::string wrap = j.contains("wrap") ? text_of(j["wrap"]) : "";
-  const std::string vflip = j.contains("vflip") ? text_of(j["vflip"]) : "";
-  if (filter == "nearest") s.filter = Sampler::Filter::Nearest;
-  if (filter == "linear") s.filter = Sampler::Filter::Linear;
-  if (filter == "mipmap") s.filter = Sampler::Filter::Mipmap;
-  if (wrap == "clamp") s.wrap = Sampler::Wrap::Clamp;
-  if (wrap == "repeat") s.wrap = Sampler::Wrap::Repeat;
-  if (vflip == "true") s.vflip = true;
-  if (vflip == "false") s.vflip = false;
+  auto setting = [&](const char* key, const char* spellings, auto&& take) {
+    if (!j.contains(key)) return;
+    const std::string value = text_of(j[key]);
+    if (!take(value))
+      warnings->push_back(where + ": sampler " + key + " '" + (value.empty() ? j[key].dump() : value) + "' is not " +
+                          spellings + "; the default is used");
+  };
+  setting("filter", "nearest, linear or mipmap", [&](const std::string& v) {
+    if (v == "nearest") s.filter = Sampler::Filter::Nearest;
+    else if (v == "linear") s.filter = Sampler::Filter::Linear;
+    else if (v == "mipmap") s.filter = Sampler::Filter::Mipmap;
+    else return false;
+    return true;
+  });
+  setting("wrap", "clamp or repeat", [&](const std::string& v) {
+    if (v == "clamp") s.wrap = Sampler::Wrap::Clamp;
+    else if (v == "repeat") s.wrap = Sampler::Wrap::Repeat;
+    else return false;
+    return true;
+  });
+  setting("vflip", "true or false", [&](const std::string& v) {
+    if (v != "true" && v != "false") return false;
+    s.vflip = v == "true";
+    return true;
+  });
   return s;
 }
 
@@ -175,19 +193,31 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
   };
   std::vector<PassText> passes;
   project.files[ShadertoyProject::kCommon] = "";
+  // Shadertoy has one pass of each; a second one (a JSON edited by hand) is
+  // left out, so the first stands whatever the order of the rest.
+  auto taken = [&](const std::string& file, const std::string& name) {
+    const bool second = file == ShadertoyProject::kCommon
+                            ? project.has_common
+                            : std::any_of(passes.begin(), passes.end(), [&](const PassText& p) { return p.file == file; });
+    if (second) project.warnings.push_back("pass '" + name + "' is a second " + file + "; it is left out");
+    return second;
+  };
   for (const json& pass : doc["renderpass"]) {
     if (!pass.is_object()) continue;
     const std::string type = pass.contains("type") ? text_of(pass["type"]) : "";
     const std::string name = pass.contains("name") ? text_of(pass["name"]) : "";
     if (type == "common") {
+      if (taken(ShadertoyProject::kCommon, name)) continue;
       project.files[ShadertoyProject::kCommon] = pass.contains("code") ? text_of(pass["code"]) : "";
       project.has_common = true;
     } else if (type == "cubemap") {
+      if (taken(kCubeFile, name)) continue;
       if (pass.contains("outputs") && pass["outputs"].is_array())
         for (const json& out : pass["outputs"])
           if (out.is_object() && out.contains("id")) cube_outputs.push_back(text_of(out["id"]));
       passes.push_back({kCubeFile, &pass});
     } else if (type == "image") {
+      if (taken(ShadertoyProject::kImage, name)) continue;
       passes.push_back({ShadertoyProject::kImage, &pass});
     } else if (type == "buffer") {
       int index = buffer_index_of_name(name);
@@ -200,6 +230,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         project.warnings.push_back("buffer pass '" + name + "' is not Buffer A to D; it is left out");
         continue;
       }
+      if (taken(buffer_file(index), name)) continue;
       if (pass.contains("outputs") && pass["outputs"].is_array())
         for (const json& out : pass["outputs"])
           if (out.is_object() && out.contains("id")) buffer_of_output[text_of(out["id"])] = index;
@@ -222,7 +253,13 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     for (const json& input : inputs) {
       if (!input.is_object()) continue;
       const int channel = channel_of(input);
-      if (channel < 0) continue;
+      if (channel < 0) {
+        const auto it = input.find("channel");
+        project.warnings.push_back(p.file + (it == input.end() ? ": an input with no channel"
+                                                              : ": an input on channel " + it->dump() + ", not 0 to 3") +
+                                   "; it is left out");
+        continue;
+      }
       const std::string ctype = input.contains("ctype") ? text_of(input["ctype"]) : input.contains("type") ? text_of(input["type"]) : "";
       const std::string src = input.contains("src") ? text_of(input["src"]) : input.contains("filepath") ? text_of(input["filepath"]) : "";
       const std::string where = p.file + " iChannel" + std::to_string(channel);
@@ -283,7 +320,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         project.warnings.push_back(where + ": input type '" + ctype + "' is not supported; it reads black");
         spec.kind = ChannelSpec::Kind::Black;
       }
-      spec.sampler = sampler_of(input, stand_in ? ChannelSpec::Kind::Image : spec.kind, spec.shape);
+      spec.sampler = sampler_of(input, stand_in ? ChannelSpec::Kind::Image : spec.kind, spec.shape, where, &project.warnings);
       text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";
     }
     project.files[p.file] = text;

@@ -125,16 +125,72 @@ TEST(ShadertoyJson, UnknownPassAndInputTypesAreOneWarningEachAndTheRestRuns) {
 }
 
 // Only channels 0 to 3 exist: a larger number, even one that a cast to int
-// would wrap to 0 (2^32) or -1 (2^64 - 1), binds nothing.
-TEST(ShadertoyJson, AChannelPastThreeBindsNothing) {
+// would wrap to 0 (2^32) or -1 (2^64 - 1), binds nothing, and says so.
+TEST(ShadertoyJson, AChannelPastThreeBindsNothingWithAWarning) {
   const std::string json = R"({"renderpass": [{"type": "image", "code": "x", "inputs": [
       {"ctype": "keyboard", "channel": 4294967296}, {"ctype": "keyboard", "channel": 18446744073709551615},
       {"ctype": "keyboard", "channel": -4294967295}, {"ctype": "keyboard", "channel": 4},
+      {"ctype": "keyboard", "channel": "1"}, {"ctype": "keyboard"},
       {"ctype": "keyboard", "channel": 2}]}]})";
   std::string error;
   auto p = read(json, &error);
   ASSERT_TRUE(p) << error;
   EXPECT_EQ(p->files["image.frag"], "x\n#pragma channel2 keyboard\n");
+  EXPECT_EQ(p->warnings, (std::vector<std::string>{
+                             "image.frag: an input on channel 4294967296, not 0 to 3; it is left out",
+                             "image.frag: an input on channel 18446744073709551615, not 0 to 3; it is left out",
+                             "image.frag: an input on channel -4294967295, not 0 to 3; it is left out",
+                             "image.frag: an input on channel 4, not 0 to 3; it is left out",
+                             "image.frag: an input on channel \"1\", not 0 to 3; it is left out",
+                             "image.frag: an input with no channel; it is left out",
+                         }));
+}
+
+// Shadertoy has one pass of each kind; in a JSON edited by hand, the first
+// of two stands and the second is one warning, whatever their order.
+TEST(ShadertoyJson, ASecondPassOfOneKindIsLeftOutWithAWarning) {
+  const std::string json = R"({"renderpass": [
+      {"type": "buffer", "name": "Buffer A", "code": "A1", "outputs": [{"id": 257, "channel": 0}]},
+      {"type": "image", "name": "Image", "code": "first",
+       "inputs": [{"ctype": "buffer", "id": 257, "channel": 0}, {"ctype": "buffer", "id": 999, "channel": 1}]},
+      {"type": "common", "name": "Common", "code": "C1"},
+      {"type": "image", "name": "Image 2", "code": "second"},
+      {"type": "buffer", "name": "Buf A", "code": "A2", "outputs": [{"id": 999, "channel": 0}]},
+      {"type": "common", "name": "Common", "code": "C2"},
+      {"type": "cubemap", "name": "Cube A", "code": "K1"},
+      {"type": "cubemap", "name": "Cube A", "code": "K2"}]})";
+  std::string error;
+  auto p = read(json, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["buffer_a.frag"], "A1\n");
+  EXPECT_EQ(p->files["common.glsl"], "C1");
+  EXPECT_EQ(p->files["cube_a.frag"], "K1\n");
+  // The second Buffer A's output names no buffer: it was left out.
+  EXPECT_EQ(p->files["image.frag"], "first\n#pragma channel0 \"buffer_a.frag\"\n#pragma channel1 black\n");
+  EXPECT_EQ(p->warnings, (std::vector<std::string>{
+                             "pass 'Image 2' is a second image.frag; it is left out",
+                             "pass 'Buf A' is a second buffer_a.frag; it is left out",
+                             "pass 'Common' is a second common.glsl; it is left out",
+                             "pass 'Cube A' is a second cube_a.frag; it is left out",
+                             "image.frag iChannel1: a buffer input that names no buffer; it reads black",
+                         }));
+}
+
+// A sampler setting Shadertoy does not spell so keeps the default, and says so.
+TEST(ShadertoyJson, ASamplerSettingShadertoyDoesNotHaveIsAWarning) {
+  const std::string json = R"({"renderpass": [{"type": "image", "code": "x", "inputs": [
+      {"ctype": "keyboard", "channel": 0, "sampler": {"filter": "bogus", "wrap": "mirror", "vflip": null}},
+      {"ctype": "keyboard", "channel": 1, "sampler": {"filter": "linear", "wrap": "repeat", "vflip": false,
+                                                      "srgb": "false", "internal": "byte"}}]}]})";
+  std::string error;
+  auto p = read(json, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["image.frag"], "x\n#pragma channel0 keyboard\n#pragma channel1 keyboard filter=linear wrap=repeat vflip=false\n");
+  EXPECT_EQ(p->warnings, (std::vector<std::string>{
+                             "image.frag iChannel0: sampler filter 'bogus' is not nearest, linear or mipmap; the default is used",
+                             "image.frag iChannel0: sampler wrap 'mirror' is not clamp or repeat; the default is used",
+                             "image.frag iChannel0: sampler vflip 'null' is not true or false; the default is used",
+                         }));
 }
 
 TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
