@@ -246,15 +246,16 @@ std::optional<std::vector<UniformValue>> uniform_values(const UserUniforms& unif
     if (eq == std::string::npos || !u) {
       std::string names;
       for (const UserUniform& known : uniforms.uniforms) names += (names.empty() ? "" : ", ") + known.name;
-      *error = eq == std::string::npos ? "'" + set + "' is not NAME=VALUE"
-                                       : "the shader declares no uniform '" + name + "' of its own (" +
-                                             (names.empty() ? std::string("it has none") : "it has " + names) + ")";
+      *error = "'" + set + "': " +
+               (eq == std::string::npos ? "not NAME=VALUE"
+                                        : "the shader declares no uniform '" + name + "' of its own (" +
+                                              (names.empty() ? std::string("it has none") : "it has " + names) + ")");
       return std::nullopt;
     }
     std::string why;
     auto value = parse_uniform_value(*u, set.substr(eq + 1), &why);
     if (!value) {
-      *error = name + ": " + why;
+      *error = "'" + set + "': " + why;
       return std::nullopt;
     }
     for (UniformValue& v : out)

@@ -52,7 +52,7 @@ std::string uniform_value_text(const UserUniform::Type type, const std::vector<f
 
 // Every uniform at its `default=`, then each "NAME=VALUE" of `sets` (as
 // `render --set` takes them) in its place. nullopt with *error on a NAME the
-// shader does not declare or a VALUE that does not fit.
+// shader does not declare or a VALUE that does not fit ("'NAME=VALUE': why").
 std::optional<std::vector<UniformValue>> uniform_values(const UserUniforms& uniforms,
                                                         const std::vector<std::string>& sets, std::string* error);
 

@@ -154,9 +154,9 @@ TEST_F(Cli, RenderSetGivesUniformsAndTheMetadataReproducesThem) {
   r = run(command.substr(std::string("raymarching ").size()) + " -o " + (dir_ / "again.exr").string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(test::read_pixels(dir_ / "again.exr"), test::read_pixels(first));
-  r = run("render " + scene + " -o " + first + " --set gian=1");
+  r = run("render " + scene + " -o " + first + " --set gian=0.5");
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err, "raymarching: error: --set the shader declares no uniform 'gian' of its own (it has gain, tint)\n");
+  EXPECT_EQ(r.err, "raymarching: error: --set 'gian=0.5': the shader declares no uniform 'gian' of its own (it has gain, tint)\n");
 }
 
 // Silent on success, as compilers and linters are: exit 0 and no output.

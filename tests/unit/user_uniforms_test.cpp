@@ -99,12 +99,12 @@ TEST(UserUniforms, SetGivesValuesAndRefusesWhatDoesNotFit) {
   EXPECT_EQ((*values)[1].value, (std::vector<float>{0.1f, 0.2f, 0.3f}));
   EXPECT_EQ((*values)[2].text, "true");
   EXPECT_FALSE(uniform_values(u, {"nope=1"}, &error));
-  EXPECT_EQ(error, "the shader declares no uniform 'nope' of its own (it has speed, tint, on)");
+  EXPECT_EQ(error, "'nope=1': the shader declares no uniform 'nope' of its own (it has speed, tint, on)");
   EXPECT_FALSE(uniform_values(u, {"tint=1,2"}, &error));
-  EXPECT_EQ(error, "tint: '1,2' has 2 numbers; tint takes 3");
+  EXPECT_EQ(error, "'tint=1,2': '1,2' has 2 numbers; tint takes 3");
   EXPECT_FALSE(uniform_values(u, {"on=maybe"}, &error));
   EXPECT_FALSE(uniform_values(u, {"speed"}, &error));
-  EXPECT_EQ(error, "'speed' is not NAME=VALUE");
+  EXPECT_EQ(error, "'speed': not NAME=VALUE");
   EXPECT_EQ(uniform_value_text(UserUniform::Type::Float, {-0.0f}), "0") << "never -0";
   EXPECT_EQ(uniform_value_text(UserUniform::Type::Int, {1073741824.0f}), "1073741824") << "an int is whole";
 }
@@ -126,7 +126,7 @@ TEST(UserUniforms, ValuesAreFiniteAndAnIntsFitsAnInt) {
     EXPECT_NE(error.find("is not a number"), std::string::npos) << error;
   }
   EXPECT_FALSE(uniform_values(u, {"count=-1e10"}, &error));
-  EXPECT_EQ(error, "count: '-1e10' is out of an int's range");
+  EXPECT_EQ(error, "'count=-1e10': '-1e10' is out of an int's range");
   auto values = uniform_values(u, {"count=-2147483648", "speed=-3.4e38"}, &error);
   ASSERT_TRUE(values) << error;
   EXPECT_EQ((*values)[1].value, std::vector<float>{-2147483648.0f});
