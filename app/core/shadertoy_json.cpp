@@ -8,6 +8,7 @@
 #include "core/channel_spec.h"
 #include "core/files.h"
 #include "core/json_depth.h"
+#include "core/json_errors.h"
 
 namespace rm {
 
@@ -161,7 +162,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
-    const std::string what = e.what();
+    const std::string what = short_json_error(e.what());
     const size_t colon = what.find("syntax error");
     *error = error_at(text, e.byte > 0 ? e.byte - 1 : 0, colon == std::string::npos ? what : what.substr(colon));
     return std::nullopt;

@@ -14,6 +14,7 @@
 #include "core/capture.h"
 #include "core/files.h"
 #include "core/json_depth.h"
+#include "core/json_errors.h"
 #include "core/lexing.h"
 
 namespace rm {
@@ -298,7 +299,7 @@ std::optional<Take> read_take(const std::filesystem::path& path, std::string* er
     return take;
   } catch (const json::exception& e) {
     // nlohmann's own words say where: "parse error at line 3, column 7: ..." or a missing key.
-    *error = where + e.what();
+    *error = where + short_json_error(e.what());
     return std::nullopt;
   } catch (const OutOfRange& e) {
     *error = where + "expected " + e.kind + ", not " + e.text;

@@ -204,6 +204,12 @@ TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
   // nlohmann throws out_of_range, not a parse error, for this one (found by json_fuzz: an abort).
   EXPECT_FALSE(read("{\"renderpass\": [],\n \"ver\": 5e55555}", &error));
   EXPECT_EQ(error, "2:9: the number 5e55555 is too large for a double");
+  // Saved half-written inside a pass's code: the place, and the code's ends, not all of it.
+  EXPECT_FALSE(read("{\"renderpass\": [{\"type\": \"image\", \"code\": \"void mainImage(" + std::string(5000, ' '),
+                    &error));
+  EXPECT_EQ(error,
+            "1:5059: syntax error while parsing value - invalid string: missing closing quote; "
+            "last read: '\"void mainImage(        …                '");
 }
 
 // A JSON edited by hand may put anything where an object was: each such

@@ -126,6 +126,10 @@ TEST_F(TakeFiles, ABadTakeSaysWhatIsWrongWithIt) {
     return error;
   };
   EXPECT_NE(error_of("{ \"raymarching_take\": 1, ").find("parse error"), std::string::npos);
+  // Cut inside a long string, a take's error is still one short line, not the rest of the file.
+  const std::string cut = error_of("{ \"raymarching_take\": 1, \"scene\": \"" + std::string(5000, 's'));
+  EXPECT_NE(cut.find("missing closing quote; last read: '\"sss"), std::string::npos) << cut;
+  EXPECT_LT(cut.size(), 300u) << cut;
   EXPECT_NE(error_of("{\"frames\": []}").find("not a take of this version"), std::string::npos);
   EXPECT_NE(error_of("{\"raymarching_take\": 1e300}").find("not a take of this version"), std::string::npos);
   EXPECT_NE(error_of("{\"raymarching_take\": 1, \"scene\": \"s.frag\", \"frames\": []}").find("holds no frames"),

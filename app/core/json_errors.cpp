@@ -1,0 +1,26 @@
+#include "core/json_errors.h"
+
+namespace rm {
+
+namespace {
+
+constexpr size_t kKeptHead = 24, kKeptTail = 16;  // bytes, about; enough to find the place in an editor
+
+bool continues_a_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+}  // namespace
+
+std::string short_json_error(const std::string& what) {
+  const std::string key = "last read: '";
+  const size_t open = what.find(key);
+  const size_t close = what.rfind('\'');
+  if (open == std::string::npos || close == std::string::npos) return what;
+  const size_t begin = open + key.size();
+  if (close < begin || close - begin <= kKeptHead + kKeptTail + 8) return what;
+  size_t head_end = begin + kKeptHead, tail_begin = close - kKeptTail;
+  while (head_end > begin && continues_a_character(what[head_end])) --head_end;
+  while (tail_begin < close && continues_a_character(what[tail_begin])) ++tail_begin;
+  return what.substr(0, head_end) + "…" + what.substr(tail_begin);
+}
+
+}  // namespace rm

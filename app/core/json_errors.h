@@ -1,0 +1,15 @@
+// nlohmann's parse errors made fit for a one-line message. It quotes the
+// whole token it last read, and for a string left open (a JSON saved
+// half-written) that is the rest of the file: a shader's code, thousands of
+// characters, in what should be one line.
+#pragma once
+#include <string>
+
+namespace rm {
+
+// `what` with its "last read: '...'" cut to its first and last few
+// characters around "…", at UTF-8 character boundaries; unchanged when the
+// token is short or not there.
+std::string short_json_error(const std::string& what);
+
+}  // namespace rm
