@@ -20,7 +20,7 @@ std::string short_json_error(const std::string& what) {
   size_t head_end = begin + kKeptHead, tail_begin = close - kKeptTail;
   while (head_end > begin && continues_a_character(what[head_end])) --head_end;
   while (tail_begin < close && continues_a_character(what[tail_begin])) ++tail_begin;
-  return what.substr(0, head_end) + "…" + what.substr(tail_begin);
+  return what.substr(0, head_end) + "..." + what.substr(tail_begin);
 }
 
 }  // namespace rm

@@ -8,8 +8,8 @@
 namespace rm {
 
 // `what` with its "last read: '...'" cut to its first and last few
-// characters around "…", at UTF-8 character boundaries; unchanged when the
-// token is short or not there.
+// characters around "..." (ASCII: the window's font has no ellipsis), at
+// UTF-8 character boundaries; unchanged when the token is short or not there.
 std::string short_json_error(const std::string& what);
 
 }  // namespace rm

@@ -209,7 +209,7 @@ TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
                     &error));
   EXPECT_EQ(error,
             "1:5059: syntax error while parsing value - invalid string: missing closing quote; "
-            "last read: '\"void mainImage(        …                '");
+            "last read: '\"void mainImage(        ...                '");
 }
 
 // A JSON edited by hand may put anything where an object was: each such
