@@ -11,7 +11,8 @@ namespace {
 
 std::string parse_error_of(const std::string& text) {
   try {
-    (void)nlohmann::json::parse(text);
+    const nlohmann::json parsed = nlohmann::json::parse(text);
+    (void)parsed;
   } catch (const nlohmann::json::parse_error& e) {
     return e.what();
   }
