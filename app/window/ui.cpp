@@ -7,6 +7,8 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include "window/fonts.h"
+
 namespace rm {
 
 Ui::Ui(GLFWwindow* window) : window_(window) {
@@ -14,10 +16,7 @@ Ui::Ui(GLFWwindow* window) : window_(window) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini in the person's directory
-  io.Fonts->AddFontDefault();
-  ImFontConfig small;
-  small.SizePixels = 11.0f;
-  small_font_ = io.Fonts->AddFontDefault(&small);
+  fonts_ = std::make_unique<InterfaceFonts>(*io.Fonts);
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_, false);
   ImGui_ImplOpenGL3_Init("#version 450 core");
@@ -28,6 +27,8 @@ Ui::~Ui() {
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
 }
+
+ImFont* Ui::small_font() const { return fonts_->small(); }
 
 bool Ui::covers(glm::vec2 cursor) const {
   if (!visible_) return false;

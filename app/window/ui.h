@@ -3,6 +3,7 @@
 // the graph has drawn, so F12 shots and `render` (which read the graph's own
 // targets) never contain it.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -11,6 +12,8 @@ struct GLFWwindow;
 struct ImFont;
 
 namespace rm {
+
+class InterfaceFonts;
 
 class Ui {
  public:
@@ -43,14 +46,14 @@ class Ui {
   void end();
   // Called by the panels inside each of their windows: where it lies.
   void note_window_rect();
-  // Dear ImGui's own font, rasterised smaller (for warnings) than the 13 px default.
-  ImFont* small_font() const { return small_font_; }
+  // The font rasterised smaller (for warnings) than the 13 px default.
+  ImFont* small_font() const;
 
  private:
   GLFWwindow* window_;
   bool visible_ = true;
   bool in_frame_ = false;
-  ImFont* small_font_ = nullptr;
+  std::unique_ptr<InterfaceFonts> fonts_;  // outlives the context's atlas, which reads its bytes
   std::vector<glm::vec4> rects_, next_rects_;  // x, y, width, height of each panel
 };
 
