@@ -72,6 +72,16 @@ const StandIn& stand_in_for(const std::string& ctype) {
   return kStandIns[0];
 }
 
+// A value of the JSON as a warning quotes it: whole when short, else its
+// first characters (at a UTF-8 boundary), so a warning stays one short line.
+std::string brief(const std::string& text) {
+  constexpr size_t kMost = 40;
+  if (text.size() <= kMost) return text;
+  size_t end = kMost;
+  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
+  return text.substr(0, end) + "...";
+}
+
 // "Buffer A", "Buf A", "BufferA" -> 0; -1 for anything else.
 int buffer_index_of_name(const std::string& name) {
   std::string letters;
@@ -99,8 +109,8 @@ Sampler sampler_of(const json& input, ChannelSpec::Kind kind, ChannelSpec::Shape
     if (!j.contains(key)) return;
     const std::string value = text_of(j[key]);
     if (!take(value))
-      warnings->push_back(where + ": sampler " + key + " '" + (value.empty() ? j[key].dump() : value) + "' is not " +
-                          spellings + "; the default is used");
+      warnings->push_back(where + ": sampler " + key + " '" + brief(value.empty() ? j[key].dump() : value) +
+                          "' is not " + spellings + "; the default is used");
   };
   setting("filter", "nearest, linear or mipmap", [&](const std::string& v) {
     if (v == "nearest") s.filter = Sampler::Filter::Nearest;
@@ -200,7 +210,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     const bool second = file == ShadertoyProject::kCommon
                             ? project.has_common
                             : std::any_of(passes.begin(), passes.end(), [&](const PassText& p) { return p.file == file; });
-    if (second) project.warnings.push_back("pass '" + name + "' is a second " + file + "; it is left out");
+    if (second) project.warnings.push_back("pass '" + brief(name) + "' is a second " + file + "; it is left out");
     return second;
   };
   for (const json& pass : doc["renderpass"]) {
@@ -257,7 +267,7 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
       if (channel < 0) {
         const auto it = input.find("channel");
         project.warnings.push_back(p.file + (it == input.end() ? ": an input with no channel"
-                                                              : ": an input on channel " + it->dump() + ", not 0 to 3") +
+                                                              : ": an input on channel " + brief(it->dump()) + ", not 0 to 3") +
                                    "; it is left out");
         continue;
       }

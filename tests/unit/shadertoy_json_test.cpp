@@ -131,6 +131,7 @@ TEST(ShadertoyJson, AChannelPastThreeBindsNothingWithAWarning) {
       {"ctype": "keyboard", "channel": 4294967296}, {"ctype": "keyboard", "channel": 18446744073709551615},
       {"ctype": "keyboard", "channel": -4294967295}, {"ctype": "keyboard", "channel": 4},
       {"ctype": "keyboard", "channel": "1"}, {"ctype": "keyboard"},
+      {"ctype": "keyboard", "channel": "0123456789012345678901234567890123456789 and more"},
       {"ctype": "keyboard", "channel": 2}]}]})";
   std::string error;
   auto p = read(json, &error);
@@ -143,6 +144,8 @@ TEST(ShadertoyJson, AChannelPastThreeBindsNothingWithAWarning) {
                              "image.frag: an input on channel 4, not 0 to 3; it is left out",
                              "image.frag: an input on channel \"1\", not 0 to 3; it is left out",
                              "image.frag: an input with no channel; it is left out",
+                             "image.frag: an input on channel \"012345678901234567890123456789012345678..., not 0 to 3; "
+                             "it is left out",
                          }));
 }
 
