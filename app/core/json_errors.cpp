@@ -8,6 +8,12 @@ constexpr size_t kKeptHead = 24, kKeptTail = 16;  // bytes, about; enough to fin
 
 bool continues_a_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
 
+// `at`, or the nearest byte before it (not before `floor`) that starts a character.
+size_t back_to_a_character(const std::string& text, size_t at, size_t floor) {
+  while (at > floor && continues_a_character(text[at])) --at;
+  return at;
+}
+
 }  // namespace
 
 std::string short_json_error(const std::string& what) {
@@ -16,11 +22,16 @@ std::string short_json_error(const std::string& what) {
   const size_t close = what.rfind('\'');
   if (open == std::string::npos || close == std::string::npos) return what;
   const size_t begin = open + key.size();
-  if (close < begin || close - begin <= kKeptHead + kKeptTail + 8) return what;
-  size_t head_end = begin + kKeptHead, tail_begin = close - kKeptTail;
-  while (head_end > begin && continues_a_character(what[head_end])) --head_end;
+  if (close < begin || close - begin <= kKeptHead + kKeptTail + 8) return what;  // a cut would save little
+  const size_t head_end = back_to_a_character(what, begin + kKeptHead, begin);
+  size_t tail_begin = close - kKeptTail;
   while (tail_begin < close && continues_a_character(what[tail_begin])) ++tail_begin;
   return what.substr(0, head_end) + "..." + what.substr(tail_begin);
+}
+
+std::string brief(const std::string& text, size_t most) {
+  if (text.size() <= most) return text;
+  return text.substr(0, back_to_a_character(text, most, 0)) + "...";
 }
 
 }  // namespace rm

@@ -72,16 +72,6 @@ const StandIn& stand_in_for(const std::string& ctype) {
   return kStandIns[0];
 }
 
-// A value of the JSON as a warning quotes it: whole when short, else its
-// first characters (at a UTF-8 boundary), so a warning stays one short line.
-std::string brief(const std::string& text) {
-  constexpr size_t kMost = 40;
-  if (text.size() <= kMost) return text;
-  size_t end = kMost;
-  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
-  return text.substr(0, end) + "...";
-}
-
 // "Buffer A", "Buf A", "BufferA" -> 0; -1 for anything else.
 int buffer_index_of_name(const std::string& name) {
   std::string letters;
