@@ -19,8 +19,8 @@ const ImWchar kPastAscii[] = {0x00A0, 0x024F, 0x0370, 0x03FF, 0x0400, 0x04FF, 0x
 
 constexpr FcChar32 kProbe = 0x00E4;  // ä: a font without it is no help
 
-}  // namespace
-
+// A monospace TrueType font with letters past ASCII, as fontconfig matches
+// "monospace"; "" when there is none.
 std::string monospace_font_file() {
   if (!FcInit()) return "";
   FcPattern* pattern = FcNameParse(reinterpret_cast<const FcChar8*>("monospace"));
@@ -46,6 +46,8 @@ std::string monospace_font_file() {
   FcPatternDestroy(pattern);
   return file;
 }
+
+}  // namespace
 
 InterfaceFonts::InterfaceFonts(ImFontAtlas& atlas) {
   const std::string file = monospace_font_file();

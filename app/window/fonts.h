@@ -35,8 +35,4 @@ class InterfaceFonts {
   ImFont* small_ = nullptr;
 };
 
-// A monospace TrueType font with letters past ASCII, as fontconfig matches
-// "monospace"; "" when there is none.
-std::string monospace_font_file();
-
 }  // namespace rm
