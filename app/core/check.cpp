@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/dialect_names.h"
 #include "core/glslang_client.h"
 #include "core/left_open.h"
 #include "core/lexing.h"
@@ -324,6 +325,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
   while (std::getline(in, text)) {
     while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
     if (text.empty()) continue;
+    text = with_names_restored(text, source.renamed);
     if (format == LogFormat::Glslang) {
       // "ERROR: 0:12: 'foo' : undeclared identifier", then "ERROR: 1 compilation errors. ..."
       LogLine line(text);

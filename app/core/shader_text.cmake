@@ -13,6 +13,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/source.cpp
   ${CMAKE_CURRENT_LIST_DIR}/files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lexing.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/dialect_names.cpp
   ${CMAKE_CURRENT_LIST_DIR}/diagnostics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/left_open.cpp

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "core/check.h"
+#include "core/dialect_names.h"
 #include "core/files.h"
 #include "core/host_inputs.h"
 #include "core/lexing.h"
@@ -474,6 +475,11 @@ class Preprocessor {
       out_.movable_frag_coord = !redeclares_frag_coord(code);
       if (lexing::has_word(code, "gl_FragCoord") && out_.movable_frag_coord)
         emit_host(std::string("uniform vec2 rm_FragCoordOffset;\n") + kFragCoordOffset);
+    }
+    if (out_.kind != ShaderKind::Complete) {
+      out_.renamed =
+          names_core_reserves(code, out_.kind == ShaderKind::Shadertoy ? Dialect::EsSl300 : Dialect::Glsl110);
+      for (const std::string& word : out_.renamed) emit_host("#define " + word + " " + compiler_name(word));
     }
     out_.text += body_;
     out_.line_map.insert(out_.line_map.end(), body_map_.begin(), body_map_.end());

@@ -93,6 +93,9 @@ struct Source {
   // offset): false only for a shader that redeclares gl_FragCoord itself.
   bool movable_frag_coord = true;
   std::string version_line;        // the #version line the final text starts with
+  // Words 4.50 core reserves that the code, written for an older dialect,
+  // uses as names: the compiler sees each as rm_<word> (core/dialect_names.h).
+  std::vector<std::string> renamed;
   // What iChannel0..3 read, named in the shader by #pragma channelN
   // (core/channel_spec.h; a file is relative to the file that names it);
   // Kind::None where nothing is named. A --channelN wins.

@@ -120,6 +120,26 @@ TEST_F(Gpu, AllThreeKindsOfShaderRender) {
   }
 }
 
+// Names Shadertoy's and glslViewer's dialects allow and 4.50 core reserves
+// (core/dialect_names.h) reach the driver renamed, and draw what they say.
+TEST_F(Gpu, NamesTheOlderDialectsAllowDraw) {
+  write_file(dir_ / "toy.frag",
+             "void mainImage(out vec4 c, in vec2 f) {\n  vec4 buffer = vec4(0.25, 0.5, f.x / iResolution.x, 1.0);\n"
+             "  float shared = 1.0, precise = 2.0;\n  c = buffer * shared * precise / 2.0;\n}\n");
+  write_file(dir_ / "legacy.frag",
+             "uniform vec2 u_resolution;\nvec4 sample(float smooth) { return vec4(0.25, 0.5, smooth, 1.0); }\n"
+             "void main() {\n  float flat = gl_FragCoord.x / u_resolution.x, layout = 1.0;\n"
+             "  gl_FragColor = sample(flat) * layout;\n}\n");
+  for (const char* name : {"toy.frag", "legacy.frag"}) {
+    Scene scene(dir_ / name, {});
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << name << "\n" << join(scene.diagnostics());
+    Image img = render(scene, {4, 2});
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[0], 0.25f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[1], 0.5f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(3, 1)[2], 3.5f / 4.0f) << name;
+  }
+}
+
 TEST_F(Gpu, BrokenReloadKeepsTheLastGoodProgram) {
   const auto path = dir_ / "scene.frag";
   write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 1.0, 0.0, 1.0); }\n");

@@ -241,6 +241,34 @@ TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
   EXPECT_EQ(origin_of(s, "void main()").second, 5);
 }
 
+// Shadertoy's GLSL ES 3.00 and glslViewer's GLSL 1.10 leave words free
+// that 4.50 core reserves: code that names a variable so runs as it does
+// there, and an error about that variable names it as the code spells it.
+TEST(Source, NamesTheOlderDialectsAllowCompile) {
+  TempDir dir;
+  write_file(dir / "toy.frag",
+             "void mainImage(out vec4 c, in vec2 f) {\n  vec4 buffer = texture(iChannel0, f);\n"
+             "  float precise = 0.5;\n  c = buffer * precise;\n}\n");
+  Source toy = preprocess(dir / "toy.frag", {});
+  ASSERT_TRUE(toy.ok()) << join(toy.errors);
+  EXPECT_EQ(toy.renamed, (std::vector<std::string>{"buffer", "precise"}));
+  EXPECT_EQ(join(validate(toy)), "");
+
+  write_file(dir / "viewer.frag",
+             "uniform sampler2D u_tex0;\nvoid main() {\n  vec4 sample = texture2D(u_tex0, vec2(0.5));\n"
+             "  float smooth = 0.5, flat = 2.0;\n  gl_FragColor = sample * smooth * flat;\n}\n");
+  Source viewer = preprocess(dir / "viewer.frag", {});
+  ASSERT_TRUE(viewer.ok()) << join(viewer.errors);
+  EXPECT_EQ(viewer.kind, ShaderKind::Legacy);
+  EXPECT_EQ(join(validate(viewer)), "");
+
+  write_file(dir / "toy.frag",
+             "void mainImage(out vec4 c, in vec2 f) {\n  vec4 buffer = vec4(1.0);\n  float buffer = 2.0;\n"
+             "  c = buffer;\n}\n");
+  EXPECT_EQ(join(validate(preprocess(dir / "toy.frag", {}))),
+            (dir / "toy.frag").string() + ":3:9: error: 'buffer' : redefinition\n");
+}
+
 TEST(Source, OldVersionLineIsTreatedAsLegacy) {
   TempDir dir;
   write_file(dir / "scene.frag", "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n");
