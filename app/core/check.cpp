@@ -336,6 +336,12 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
         if (final_line && line.take(": ")) {
           const std::string message = line.rest();
           if (message == "'' : compilation terminated") continue;  // follows a real error
+          // glslang stops reading a required extension it lacks at its name,
+          // then calls the rest of the line extra: one error is the news.
+          if (message == "'#extension' : extra tokens -- expected newline" && !out.empty() &&
+              out.back().message.rfind("'#extension' : ", 0) == 0 &&
+              out.back().line == source.locate(*final_line).second)
+            continue;
           // glslang stops at its first error, inside a conditional if it was
           // in one (or after #if nesting ran over): then of course an #endif
           // is missing.

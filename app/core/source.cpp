@@ -416,6 +416,40 @@ class Preprocessor {
     });
   }
 
+  // GLSL wants each #extension before the code's first token that is not
+  // the preprocessor's, and the host's declarations come first in the final
+  // text: the #extension lines that open the code, outside any #if, are
+  // taken from the body (each leaves a blank line) to follow the #version.
+  std::vector<std::pair<std::string, Origin>> take_leading_extensions(std::string_view code) {
+    std::vector<size_t> taken;  // line indices
+    int depth = 0;              // of #if blocks
+    size_t index = 0;
+    for_each_line(code, [&](std::string_view line, int number) {
+      index = static_cast<size_t>(number - 1);
+      if (const auto d = lexing::directive(line)) {
+        if (d->name == "if" || d->name == "ifdef" || d->name == "ifndef") ++depth;
+        else if (d->name == "endif") --depth;
+        else if (d->name == "extension" && depth == 0) taken.push_back(index);
+        return true;
+      }
+      return lexing::skip_blanks(line, 0) == line.size();  // stop at the code's first token
+    });
+    std::vector<std::pair<std::string, Origin>> out;
+    if (taken.empty()) return out;
+    std::string body;
+    body.reserve(body_.size());
+    size_t next = 0;
+    for_each_line(body_, [&](std::string_view line, int number) {
+      const bool take = next < taken.size() && taken[next] == static_cast<size_t>(number - 1);
+      if (take) out.emplace_back(std::string(line), body_map_[taken[next++]]);
+      body += take ? std::string_view() : line;
+      body += '\n';
+      return true;
+    });
+    body_ = std::move(body);
+    return out;
+  }
+
   void assemble() {
     std::string code = lexing::strip_comments(body_);
     bool has_main = lexing::has_call(code, "main", "void");
@@ -458,6 +492,7 @@ class Preprocessor {
         ? "#version " + std::to_string(version_->number) + (version_->profile.empty() ? "" : " " + version_->profile)
         : kHostVersionLine;
     emit(out_.version_line, keep_version ? version_origin_ : Origin{kHostFile, ++host_lines_});
+    for (const auto& [line, origin] : take_leading_extensions(lexing::strip_comments(body_))) emit(line, origin);
     if (const std::string line = hw_performance_define(); !line.empty()) emit_host(line);
     int define_index = 0;
     for (const auto& d : options_.defines)

@@ -140,6 +140,24 @@ TEST_F(Gpu, NamesTheOlderDialectsAllowDraw) {
   }
 }
 
+// WebGL 1 shaders open with #extension GL_OES_standard_derivatives; the
+// driver takes it only before every declaration, the host's included.
+TEST_F(Gpu, AnExtensionAtTheTopOfEveryKindOfShaderBuilds) {
+  const std::string extension = "#extension GL_OES_standard_derivatives : enable\n";
+  write_file(dir_ / "toy.frag", extension + "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, dFdx(f.x), 0.0, 1.0); }\n");
+  write_file(dir_ / "legacy.frag", extension + "void main() { gl_FragColor = vec4(0.25, dFdx(gl_FragCoord.x), 0.0, 1.0); }\n");
+  write_file(dir_ / "es.frag", "#version 300 es\n" + extension +
+                                   "precision highp float;\nout vec4 o;\n"
+                                   "void main() { o = vec4(0.25, dFdx(gl_FragCoord.x), 0.0, 1.0); }\n");
+  for (const char* name : {"toy.frag", "legacy.frag", "es.frag"}) {
+    Scene scene(dir_ / name, {});
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << name << "\n" << join(scene.diagnostics());
+    Image img = render(scene, {4, 2});
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[0], 0.25f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[1], 1.0f) << name;
+  }
+}
+
 TEST_F(Gpu, BrokenReloadKeepsTheLastGoodProgram) {
   const auto path = dir_ / "scene.frag";
   write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 1.0, 0.0, 1.0); }\n");

@@ -331,6 +331,18 @@ TEST(MapLog, LinkErrorWithoutLineNamesTheScene) {
 
 // A function declared but defined nowhere: the line that first names it
 // (outside comments), in the file that holds it, here an include's prototype.
+// glslang stops at a required extension it lacks and then calls the rest
+// of the line extra tokens: the one error is the extension.
+TEST(Check, ARequiredExtensionTheDriverLacksIsOneError) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "#extension GL_OES_texture_float : require\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags),
+            (dir / "scene.frag").string() + ":1:1: error: '#extension' : extension not supported: GL_OES_texture_float\n");
+}
+
 TEST(MapLog, UnresolvedFunctionPointsAtItsFirstMention) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"

@@ -269,6 +269,29 @@ TEST(Source, NamesTheOlderDialectsAllowCompile) {
             (dir / "toy.frag").string() + ":3:9: error: 'buffer' : redefinition\n");
 }
 
+// An #extension must precede every declaration, and the host's come before
+// the scene's: the extensions that open the scene move up to follow the
+// #version, and keep their file and line. One in an #if, or after the first
+// declaration, stays where it is.
+TEST(Source, ExtensionsThatOpenTheSceneFollowTheVersionLine) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "// derivatives\n#extension GL_OES_standard_derivatives : enable\n#ifdef GL_ES\n"
+             "#extension GL_EXT_shader_texture_lod : require\n#endif\n/* lod */ #extension all : warn\n"
+             "float x;\n#extension GL_late : enable\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(x); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.final_line_text(2), "#extension GL_OES_standard_derivatives : enable");
+  EXPECT_EQ(s.locate(2), std::make_pair((dir / "scene.frag").string(), 2));
+  EXPECT_EQ(s.final_line_text(3), "/* lod */ #extension all : warn");
+  EXPECT_EQ(s.locate(3), std::make_pair((dir / "scene.frag").string(), 6));
+  EXPECT_EQ(origin_of(s, "GL_EXT_shader_texture_lod"), std::make_pair((dir / "scene.frag").string(), 4));
+  EXPECT_GT(final_line_of(s, "GL_EXT_shader_texture_lod"), final_line_of(s, "uniform vec3 iResolution"));
+  EXPECT_EQ(origin_of(s, "GL_late"), std::make_pair((dir / "scene.frag").string(), 8));
+  EXPECT_EQ(origin_of(s, "float x;"), std::make_pair((dir / "scene.frag").string(), 7));
+  EXPECT_EQ(origin_of(s, "void mainImage"), std::make_pair((dir / "scene.frag").string(), 9));
+}
+
 TEST(Source, OldVersionLineIsTreatedAsLegacy) {
   TempDir dir;
   write_file(dir / "scene.frag", "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n");
