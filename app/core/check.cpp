@@ -118,6 +118,30 @@ std::optional<std::pair<int, int>> first_mention_of_function(const std::string& 
   return std::nullopt;
 }
 
+// The input a link error finds nothing to feed ("fragment shader input
+// `v_color' has no matching output in the previous stage" gives v_color), or
+// "" for any other message.
+std::string unfed_input(const std::string& message) {
+  const std::string_view prefix = "fragment shader input `", suffix = "' has no matching output in the previous stage";
+  if (message.rfind(prefix, 0) != 0 || message.size() < prefix.size() + suffix.size() ||
+      message.compare(message.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return "";
+  return message.substr(prefix.size(), message.size() - prefix.size() - suffix.size());
+}
+
+// The final text's first line (1-based) and column that name `name` as a
+// word outside a comment: where an input is declared.
+std::optional<std::pair<int, int>> first_mention_of_word(const std::string& name, const Source& source) {
+  if (name.empty()) return std::nullopt;
+  std::istringstream code(lexing::strip_comments(source.text));
+  int number = 0;
+  for (std::string line; std::getline(code, line);) {
+    ++number;
+    if (const auto at = lexing::find_word(line, name)) return std::pair{number, static_cast<int>(*at) + 1};
+  }
+  return std::nullopt;
+}
+
 // The function Mesa's link error names ("unresolved reference to function
 // `f'" gives f), or "" for any other message.
 std::string unresolved_function(const std::string& message) {
@@ -391,6 +415,16 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       const Severity severity = d.severity;
       std::string message = std::move(d.message);
       d = locate(source, severity, at->first, at->second, std::move(message));
+    } else if (const std::string input = unfed_input(d.message); !input.empty()) {
+      // The host's vertex shader passes nothing on; its declaration is the place.
+      const Severity severity = d.severity;
+      const std::string message =
+          "'" + input + "' is an input from a vertex shader, and the host's passes on nothing " +
+          (input == "v_texcoord" ? "(it supplies glslViewer's v_texcoord declared on a line of its own: "
+                                   "`varying vec2 v_texcoord;`)"
+                                 : "(glslViewer's v_texcoord is the one input it supplies)");
+      if (const auto at = first_mention_of_word(input, source)) d = locate(source, severity, at->first, at->second, message);
+      else d.message = message;
     }
     out.push_back(std::move(d));
   }

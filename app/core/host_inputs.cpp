@@ -66,6 +66,9 @@ const std::vector<HostInput>& host_inputs() {
       // Which face a Cube A pass draws (0..5: +X, -X, +Y, -Y, +Z, -Z).
       {"rm_CubeFace", "uniform int rm_CubeFace;", Changes::Never,
        [](P p, const char* n, I in) { p.set(n, static_cast<float>(in.cube_face)); }, "", nullptr},
+      // The picture's size in pixels, for glslViewer's v_texcoord (core/source.cpp).
+      {"rm_Resolution", "", Changes::Never,
+       [](P p, const char* n, I in) { set_vec<2>(p, n, glm::vec2(in.resolution)); }, "", nullptr},
       // glslViewer / Book of Shaders names.
       {"u_resolution", "", Changes::Never,
        [](P p, const char* n, I in) { set_vec<2>(p, n, glm::vec2(in.resolution)); }, "", nullptr},

@@ -87,6 +87,27 @@ const char* const kLegacyPrelude = R"(#define texture2D texture
 #define textureCube texture
 #define varying in)";
 
+// glslViewer's v_texcoord (see take_texcoord_declaration).
+const char* const kTexcoord = "uniform vec2 rm_Resolution;\n#define v_texcoord (gl_FragCoord.xy / rm_Resolution)";
+
+// Whether `line` (its comments stripped) is glslViewer's declaration of
+// v_texcoord: `varying vec2 v_texcoord;`, or with `in`, or a precision.
+bool declares_texcoord(std::string_view line) {
+  std::vector<std::string_view> words;
+  size_t at = lexing::skip_blanks(line, 0);
+  while (at < line.size() && lexing::is_word_start(line[at])) {
+    size_t end = at;
+    while (end < line.size() && lexing::is_word_char(line[end])) ++end;
+    words.push_back(line.substr(at, end - at));
+    at = lexing::skip_blanks(line, end);
+  }
+  if (at >= line.size() || line[at] != ';' || lexing::skip_blanks(line, at + 1) != line.size()) return false;
+  if (words.size() == 4 && (words[1] == "highp" || words[1] == "mediump" || words[1] == "lowp"))
+    words.erase(words.begin() + 1);
+  return words.size() == 3 && (words[0] == "varying" || words[0] == "in") && words[1] == "vec2" &&
+         words[2] == "v_texcoord";
+}
+
 // Every kind of shader reads gl_FragCoord through the host's offset: a tile's
 // origin (render_image past the driver's size) plus a supersample's sub-pixel
 // jitter (core/supersampling.h). A macro may name itself without recursion.
@@ -434,20 +455,40 @@ class Preprocessor {
       }
       return lexing::skip_blanks(line, 0) == line.size();  // stop at the code's first token
     });
+    return take_body_lines(taken);
+  }
+
+  // The body's lines at `indices` (ascending), each left blank in its place.
+  std::vector<std::pair<std::string, Origin>> take_body_lines(const std::vector<size_t>& indices) {
     std::vector<std::pair<std::string, Origin>> out;
-    if (taken.empty()) return out;
+    if (indices.empty()) return out;
     std::string body;
     body.reserve(body_.size());
     size_t next = 0;
     for_each_line(body_, [&](std::string_view line, int number) {
-      const bool take = next < taken.size() && taken[next] == static_cast<size_t>(number - 1);
-      if (take) out.emplace_back(std::string(line), body_map_[taken[next++]]);
+      const bool take = next < indices.size() && indices[next] == static_cast<size_t>(number - 1);
+      if (take) out.emplace_back(std::string(line), body_map_[indices[next++]]);
       body += take ? std::string_view() : line;
       body += '\n';
       return true;
     });
     body_ = std::move(body);
     return out;
+  }
+
+  // glslViewer's vertex shader hands its fragment shader v_texcoord, the
+  // pixel's place in the picture from 0 to 1. The host draws with no
+  // vertex attributes: the declaration (`varying vec2 v_texcoord;`) is
+  // taken out, and the name reads gl_FragCoord, which tiles and supersamples
+  // move; so does v_texcoord with it. Whether the code declared it.
+  bool take_texcoord_declaration(std::string_view code) {
+    std::vector<size_t> found;
+    for_each_line(code, [&](std::string_view line, int number) {
+      if (declares_texcoord(line)) found.push_back(static_cast<size_t>(number - 1));
+      return found.empty();
+    });
+    take_body_lines(found);
+    return !found.empty();
   }
 
   void assemble() {
@@ -503,12 +544,14 @@ class Preprocessor {
       emit_host(shadertoy_prelude(out_.channels));
       emit_host(kFragCoordOffset);
     } else {
+      bool texcoord = false;
       if (out_.kind == ShaderKind::Legacy) {
         emit_host(kLegacyPrelude);
         if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
+        if ((texcoord = take_texcoord_declaration(code))) emit_host(kTexcoord);
       }
       out_.movable_frag_coord = !redeclares_frag_coord(code);
-      if (lexing::has_word(code, "gl_FragCoord") && out_.movable_frag_coord)
+      if ((texcoord || lexing::has_word(code, "gl_FragCoord")) && out_.movable_frag_coord)
         emit_host(std::string("uniform vec2 rm_FragCoordOffset;\n") + kFragCoordOffset);
     }
     if (out_.kind != ShaderKind::Complete) {

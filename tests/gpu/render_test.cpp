@@ -158,6 +158,26 @@ TEST_F(Gpu, AnExtensionAtTheTopOfEveryKindOfShaderBuilds) {
   }
 }
 
+// glslViewer's v_texcoord is the pixel's place from 0 to 1, whole pictures,
+// tiles and supersamples alike.
+TEST_F(Gpu, GlslViewersTexcoordIsThePixelsPlace) {
+  write_file(dir_ / "legacy.frag", "varying vec2 v_texcoord;\nvoid main() { gl_FragColor = vec4(v_texcoord, 0.0, 1.0); }\n");
+  Scene scene(dir_ / "legacy.frag", {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << join(scene.diagnostics());
+  FrameInputs in;
+  in.resolution = glm::vec3(20.0f, 4.0f, 1.0f);
+  const Image whole = renderer_.render_image(*scene.program(), in, channels_, {20, 4}, 1);
+  EXPECT_FLOAT_EQ(whole.pixel(0, 0)[0], 0.5f / 20.0f);
+  EXPECT_FLOAT_EQ(whole.pixel(19, 3)[0], 19.5f / 20.0f);
+  EXPECT_FLOAT_EQ(whole.pixel(19, 0)[1], 3.5f / 4.0f) << "the first row is the top";
+  Renderer small;
+  small.limit_tile(8);
+  EXPECT_EQ(small.render_image(*scene.program(), in, channels_, {20, 4}, 1).rgba, whole.rgba);
+  const Image many = renderer_.render_image(*scene.program(), in, channels_, {20, 4}, 16);
+  EXPECT_NEAR(many.pixel(7, 1)[0], 7.5f / 20.0f, 0.1f / 20.0f) << "samples spread over the pixel";
+  EXPECT_NE(many.pixel(7, 1)[0], whole.pixel(7, 1)[0]) << "and move v_texcoord";
+}
+
 TEST_F(Gpu, BrokenReloadKeepsTheLastGoodProgram) {
   const auto path = dir_ / "scene.frag";
   write_file(path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0, 1.0, 0.0, 1.0); }\n");

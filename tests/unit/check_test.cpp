@@ -343,6 +343,21 @@ TEST(Check, ARequiredExtensionTheDriverLacksIsOneError) {
             (dir / "scene.frag").string() + ":1:1: error: '#extension' : extension not supported: GL_OES_texture_float\n");
 }
 
+// An input the host's vertex shader does not feed (glslViewer's v_color):
+// the driver's link error names no line; the declaration is the place.
+TEST(MapLog, AnInputNothingFeedsIsAtItsDeclaration) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "// v_color: the vertex's\nvarying vec4 v_color;\nvoid main() { gl_FragColor = v_color; }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  Diagnostics d = map_log("error: fragment shader input `v_color' has no matching output in the previous stage\n", s,
+                          LogFormat::Mesa);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].str(), (dir / "scene.frag").string() +
+                            ":2:14: error: 'v_color' is an input from a vertex shader, and the host's passes on "
+                            "nothing (glslViewer's v_texcoord is the one input it supplies)");
+}
+
 TEST(MapLog, UnresolvedFunctionPointsAtItsFirstMention) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"

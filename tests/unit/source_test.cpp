@@ -292,6 +292,26 @@ TEST(Source, ExtensionsThatOpenTheSceneFollowTheVersionLine) {
   EXPECT_EQ(origin_of(s, "void mainImage"), std::make_pair((dir / "scene.frag").string(), 9));
 }
 
+// glslViewer's vertex shader gives v_texcoord; the host's gives nothing, so
+// the declaration goes and the name reads gl_FragCoord through the host.
+TEST(Source, GlslViewersTexcoordIsTheFragmentsPlace) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "uniform vec2 u_resolution;\nvarying highp vec2  v_texcoord ; // from the vertex shader\n"
+             "void main() { gl_FragColor = vec4(v_texcoord, 0.0, 1.0); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(final_line_of(s, "varying highp"), 0) << "the declaration is taken out";
+  EXPECT_EQ(origin_of(s, "void main()"), std::make_pair((dir / "scene.frag").string(), 3));
+  EXPECT_NE(s.text.find("#define v_texcoord (gl_FragCoord.xy / rm_Resolution)"), std::string::npos);
+  EXPECT_NE(s.text.find("#define gl_FragCoord (gl_FragCoord + vec4(rm_FragCoordOffset"), std::string::npos);
+  EXPECT_EQ(join(validate(s)), "");
+
+  // Not glslViewer's (a vec3), or in a Shadertoy shader: the code's own.
+  write_file(dir / "scene.frag", "in vec3 v_texcoord;\nvoid main() { gl_FragColor = vec4(v_texcoord, 1.0); }\n");
+  EXPECT_EQ(preprocess(dir / "scene.frag", {}).text.find("rm_Resolution"), std::string::npos);
+}
+
 TEST(Source, OldVersionLineIsTreatedAsLegacy) {
   TempDir dir;
   write_file(dir / "scene.frag", "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n");
