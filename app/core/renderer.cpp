@@ -125,8 +125,11 @@ void Renderer::draw_pass(const Program& program, const FrameInputs& in, const Ch
   set_host_inputs(program, in);
   for (const UniformValue& u : in.uniforms) program.set(u.name, u.value.data(), static_cast<int>(u.value.size()));
   bind_channels(program, channels);
-  for (int i = 0; i < 4; ++i)
-    program.set_element("iChannelResolution", i, &channels[static_cast<size_t>(i)].resolution.x, 3);
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec3& resolution = channels[static_cast<size_t>(i)].resolution;
+    program.set_element("iChannelResolution", i, &resolution.x, 3);
+    program.set("u_tex" + std::to_string(i) + "Resolution", &resolution.x, 2);  // glslViewer's name
+  }
   glViewport(0, 0, size.x, size.y);
   glBindVertexArray(vao_.get());
   draw_triangle_with(program.id());

@@ -79,6 +79,22 @@ void mainImage(out vec4 c, in vec2 f) {
   EXPECT_EQ(glm::vec3(px[12], px[13], px[14]), glm::vec3(0, 0, 1));  // file row 1 (bottom): texel row 0
 }
 
+// glslViewer's names for the same: u_tex0 and u_tex0Resolution.
+TEST_F(Gpu, GlslViewersTextureAndItsResolutionAreChannelZero) {
+  Image img{3, 2, {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1}};
+  std::string error;
+  ASSERT_TRUE(write_image(dir_ / "tex.png", img, {}, Overwrite::Replace, &error)) << error;
+  write_file(dir_ / "viewer.frag", "uniform sampler2D u_tex0;\nuniform vec2 u_tex0Resolution;\n"
+                                   "void main() { gl_FragColor = gl_FragCoord.x < 1.0 ? vec4(u_tex0Resolution, 0.0, 1.0)\n"
+                                   "                                   : texelFetch(u_tex0, ivec2(0), 0); }\n");
+  test::Outcome r = run_binary("render " + (dir_ / "viewer.frag").string() + " -o " + (dir_ / "v.exr").string() +
+                               " --size 2x1 --channel0 " + (dir_ / "tex.png").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto px = read_pixels(dir_ / "v.exr");
+  EXPECT_EQ(glm::vec2(px[0], px[1]), glm::vec2(3, 2));
+  EXPECT_EQ(glm::vec3(px[4], px[5], px[6]), glm::vec3(0, 0, 1));  // the file's bottom row
+}
+
 // A scene's #pragma channel0 is its default image; --channel0 still wins.
 TEST_F(Gpu, SceneDefaultChannelIsUsedUnlessTheCommandLineGivesOne) {
   std::string error;
