@@ -20,29 +20,13 @@ constexpr std::array<std::string_view, 17> kGlsl110Names = {
 
 constexpr std::string_view kPrefix = "rm_";
 
-// How `code` uses `word`: as a name (a declaration, an operand, a function),
-// or as the qualifier 4.50 makes of it, which another word on the same line
-// follows (or, for layout, a parenthesis).
+// How `code` uses a word: as a name (a declaration, an operand, a
+// function), or as the qualifier 4.50 makes of it, which another word on the
+// same line follows (or, for layout, a parenthesis).
 struct Uses {
   bool as_name = false;
   bool as_qualifier = false;
 };
-
-Uses uses_of(std::string_view code, std::string_view word) {
-  Uses uses;
-  for (size_t from = 0; from < code.size();) {
-    const std::optional<size_t> at = lexing::find_word(code.substr(from), word);
-    if (!at) break;
-    const size_t next = lexing::skip_blanks(code, from + *at + word.size());
-    const char follows = next < code.size() ? code[next] : ';';
-    if (lexing::is_word_start(follows) || (word == "layout" && follows == '('))
-      uses.as_qualifier = true;
-    else
-      uses.as_name = true;
-    from += *at + word.size();
-  }
-  return uses;
-}
 
 bool defines_macro(std::string_view code, std::string_view word) {
   for (size_t begin = 0; begin < code.size();) {
@@ -57,15 +41,35 @@ bool defines_macro(std::string_view code, std::string_view word) {
 }  // namespace
 
 std::vector<std::string> names_core_reserves(std::string_view code, Dialect dialect) {
+  const std::string_view* words = dialect == Dialect::EsSl300 ? kEsSl300Names.data() : kGlsl110Names.data();
+  const size_t count = dialect == Dialect::EsSl300 ? kEsSl300Names.size() : kGlsl110Names.size();
+  std::vector<Uses> uses(count);
+  // One pass over the code's words: a scene may be megabytes long.
+  for (size_t i = 0; i < code.size();) {
+    if (lexing::is_digit(code[i])) {  // a number, suffix and all (1e5, 0xFFu)
+      while (i < code.size() && lexing::is_word_char(code[i])) ++i;
+      continue;
+    }
+    if (!lexing::is_word_start(code[i])) {
+      ++i;
+      continue;
+    }
+    const size_t begin = i;
+    while (i < code.size() && lexing::is_word_char(code[i])) ++i;
+    const std::string_view word = code.substr(begin, i - begin);
+    const std::string_view* found = std::find(words, words + count, word);
+    if (found == words + count) continue;
+    const size_t next = lexing::skip_blanks(code, i);
+    const char follows = next < code.size() ? code[next] : ';';
+    Uses& use = uses[static_cast<size_t>(found - words)];
+    if (lexing::is_word_start(follows) || (word == "layout" && follows == '('))
+      use.as_qualifier = true;
+    else
+      use.as_name = true;
+  }
   std::vector<std::string> out;
-  auto consider = [&](std::string_view word) {
-    const Uses uses = uses_of(code, word);
-    if (uses.as_name && !uses.as_qualifier && !defines_macro(code, word)) out.emplace_back(word);
-  };
-  if (dialect == Dialect::EsSl300)
-    std::for_each(kEsSl300Names.begin(), kEsSl300Names.end(), consider);
-  else
-    std::for_each(kGlsl110Names.begin(), kGlsl110Names.end(), consider);
+  for (size_t w = 0; w < count; ++w)
+    if (uses[w].as_name && !uses[w].as_qualifier && !defines_macro(code, words[w])) out.emplace_back(words[w]);
   return out;
 }
 
