@@ -100,20 +100,18 @@ std::string plain_words(std::string message) {
   return message;
 }
 
-// The final text's first line (1-based) and column that name function f( outside
-// a comment, which is its prototype or its first call: the line to look at for
-// a function that has no body, where the linker's log names no line.
-std::optional<std::pair<int, int>> first_mention_of_function(const std::string& name, const Source& source) {
+// The final text's first line (1-based) and column that name `name` as a
+// word outside a comment; with `call`, only where a '(' follows: a
+// function's prototype or its first call. The place to show for what the
+// linker's log names with no line: a function with no body, an input.
+std::optional<std::pair<int, int>> first_mention(const std::string& name, const Source& source, bool call) {
   if (name.empty()) return std::nullopt;
   std::istringstream code(lexing::strip_comments(source.text));
   int number = 0;
   for (std::string line; std::getline(code, line);) {
     ++number;
-    if (!lexing::has_call(line, name)) continue;
-    size_t column = line.find(name);
-    while (column != std::string::npos && column > 0 && lexing::is_word_char(line[column - 1]))
-      column = line.find(name, column + 1);
-    return std::pair{number, column == std::string::npos ? 0 : static_cast<int>(column) + 1};
+    if (call && !lexing::has_call(line, name)) continue;
+    if (const auto at = lexing::find_word(line, name)) return std::pair{number, static_cast<int>(*at) + 1};
   }
   return std::nullopt;
 }
@@ -127,19 +125,6 @@ std::string unfed_input(const std::string& message) {
       message.compare(message.size() - suffix.size(), suffix.size(), suffix) != 0)
     return "";
   return message.substr(prefix.size(), message.size() - prefix.size() - suffix.size());
-}
-
-// The final text's first line (1-based) and column that name `name` as a
-// word outside a comment: where an input is declared.
-std::optional<std::pair<int, int>> first_mention_of_word(const std::string& name, const Source& source) {
-  if (name.empty()) return std::nullopt;
-  std::istringstream code(lexing::strip_comments(source.text));
-  int number = 0;
-  for (std::string line; std::getline(code, line);) {
-    ++number;
-    if (const auto at = lexing::find_word(line, name)) return std::pair{number, static_cast<int>(*at) + 1};
-  }
-  return std::nullopt;
 }
 
 // The function Mesa's link error names ("unresolved reference to function
@@ -167,7 +152,7 @@ struct HostLineCause {
 std::optional<HostLineCause> host_line_cause(const Source& source, int final_line, const std::string& message) {
   for (const auto& [name, parameters] : kEntryPoints)
     if (message == "'" + std::string(name) + "' : no matching overloaded function found")
-      if (const auto at = first_mention_of_function(name, source); at && !source.locate(at->first).first.empty())
+      if (const auto at = first_mention(name, source, true); at && !source.locate(at->first).first.empty())
         return HostLineCause{at->first, at->second,
                              "'" + std::string(name) + "' : the host calls " + name + parameters +
                                  ", and no " + name + " takes those parameters"};
@@ -411,7 +396,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     LogLine line(text);
     if (const auto severity = line.severity("error: ", "warning: ")) d.severity = *severity;
     d.message = line.rest();
-    if (const auto at = first_mention_of_function(unresolved_function(d.message), source)) {
+    if (const auto at = first_mention(unresolved_function(d.message), source, true)) {
       const Severity severity = d.severity;
       std::string message = std::move(d.message);
       d = locate(source, severity, at->first, at->second, std::move(message));
@@ -423,7 +408,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           (input == "v_texcoord" ? "(it supplies glslViewer's v_texcoord declared on a line of its own: "
                                    "`varying vec2 v_texcoord;`)"
                                  : "(glslViewer's v_texcoord is the one input it supplies)");
-      if (const auto at = first_mention_of_word(input, source)) d = locate(source, severity, at->first, at->second, message);
+      if (const auto at = first_mention(input, source, false)) d = locate(source, severity, at->first, at->second, message);
       else d.message = message;
     }
     out.push_back(std::move(d));

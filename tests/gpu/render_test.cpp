@@ -28,6 +28,16 @@ class Gpu : public test::EglTest {
     return renderer_.render_image(*scene.program(), in, channels_, size);
   }
 
+  // The scene `name` in dir_ draws (0.25, 0.5, its pixel's x from 0 to 1) at 4x2.
+  void expect_test_pattern(const char* name) {
+    Scene scene(dir_ / name, {});
+    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << name << "\n" << join(scene.diagnostics());
+    Image img = render(scene, {4, 2});
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[0], 0.25f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(0, 0)[1], 0.5f) << name;
+    EXPECT_FLOAT_EQ(img.pixel(3, 1)[2], 3.5f / 4.0f) << name;
+  }
+
   Renderer renderer_;
   ChannelInputs channels_{};  // nothing bound
   TempDir dir_;
@@ -126,14 +136,7 @@ TEST_F(Gpu, AllThreeKindsOfShaderRender) {
   write_file(dir_ / "es.frag",
              "#version 300 es\nprecision highp float;\nuniform vec3 iResolution;\nout vec4 o;\n"
              "void main() { o = vec4(0.25, 0.5, gl_FragCoord.x / iResolution.x, 1.0); }\n");
-  for (const char* name : {"toy.frag", "full.frag", "legacy.frag", "es.frag"}) {
-    Scene scene(dir_ / name, {});
-    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << name << "\n" << join(scene.diagnostics());
-    Image img = render(scene, {4, 2});
-    EXPECT_FLOAT_EQ(img.pixel(0, 0)[0], 0.25f) << name;
-    EXPECT_FLOAT_EQ(img.pixel(0, 0)[1], 0.5f) << name;
-    EXPECT_FLOAT_EQ(img.pixel(3, 1)[2], 3.5f / 4.0f) << name;
-  }
+  for (const char* name : {"toy.frag", "full.frag", "legacy.frag", "es.frag"}) expect_test_pattern(name);
 }
 
 // Names Shadertoy's and glslViewer's dialects allow and 4.50 core reserves
@@ -146,14 +149,7 @@ TEST_F(Gpu, NamesTheOlderDialectsAllowDraw) {
              "uniform vec2 u_resolution;\nvec4 sample(float smooth) { return vec4(0.25, 0.5, smooth, 1.0); }\n"
              "void main() {\n  float flat = gl_FragCoord.x / u_resolution.x, layout = 1.0;\n"
              "  gl_FragColor = sample(flat) * layout;\n}\n");
-  for (const char* name : {"toy.frag", "legacy.frag"}) {
-    Scene scene(dir_ / name, {});
-    ASSERT_EQ(scene.reload(), ReloadStatus::Swapped) << name << "\n" << join(scene.diagnostics());
-    Image img = render(scene, {4, 2});
-    EXPECT_FLOAT_EQ(img.pixel(0, 0)[0], 0.25f) << name;
-    EXPECT_FLOAT_EQ(img.pixel(0, 0)[1], 0.5f) << name;
-    EXPECT_FLOAT_EQ(img.pixel(3, 1)[2], 3.5f / 4.0f) << name;
-  }
+  for (const char* name : {"toy.frag", "legacy.frag"}) expect_test_pattern(name);
 }
 
 // WebGL 1 shaders open with #extension GL_OES_standard_derivatives; the
