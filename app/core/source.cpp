@@ -444,13 +444,11 @@ class Preprocessor {
   std::vector<std::pair<std::string, Origin>> take_leading_extensions(std::string_view code) {
     std::vector<size_t> taken;  // line indices
     int depth = 0;              // of #if blocks
-    size_t index = 0;
     for_each_line(code, [&](std::string_view line, int number) {
-      index = static_cast<size_t>(number - 1);
       if (const auto d = lexing::directive(line)) {
         if (d->name == "if" || d->name == "ifdef" || d->name == "ifndef") ++depth;
         else if (d->name == "endif") --depth;
-        else if (d->name == "extension" && depth == 0) taken.push_back(index);
+        else if (d->name == "extension" && depth == 0) taken.push_back(static_cast<size_t>(number - 1));
         return true;
       }
       return lexing::skip_blanks(line, 0) == line.size();  // stop at the code's first token
@@ -481,9 +479,9 @@ class Preprocessor {
   // vertex attributes: the declaration (`varying vec2 v_texcoord;`) is
   // taken out, and the name reads gl_FragCoord, which tiles and supersamples
   // move; so does v_texcoord with it. Whether the code declared it.
-  bool take_texcoord_declaration(std::string_view code) {
+  bool take_texcoord_declaration() {
     std::vector<size_t> found;
-    for_each_line(code, [&](std::string_view line, int number) {
+    for_each_line(lexing::strip_comments(body_), [&](std::string_view line, int number) {
       if (declares_texcoord(line)) found.push_back(static_cast<size_t>(number - 1));
       return found.empty();
     });
@@ -548,7 +546,7 @@ class Preprocessor {
       if (out_.kind == ShaderKind::Legacy) {
         emit_host(kLegacyPrelude);
         if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
-        if ((texcoord = take_texcoord_declaration(code))) emit_host(kTexcoord);
+        if ((texcoord = take_texcoord_declaration())) emit_host(kTexcoord);
       }
       out_.movable_frag_coord = !redeclares_frag_coord(code);
       if ((texcoord || lexing::has_word(code, "gl_FragCoord")) && out_.movable_frag_coord)

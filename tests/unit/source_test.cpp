@@ -307,6 +307,18 @@ TEST(Source, GlslViewersTexcoordIsTheFragmentsPlace) {
   EXPECT_NE(s.text.find("#define gl_FragCoord (gl_FragCoord + vec4(rm_FragCoordOffset"), std::string::npos);
   EXPECT_EQ(join(validate(s)), "");
 
+  // A mainImage for another host in an inactive block: still glslViewer's,
+  // and its lines are where they were.
+  write_file(dir / "scene.frag",
+             "#ifdef SHADERTOY\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n#endif\n"
+             "varying vec2 v_texcoord;\nvoid main() { gl_FragColor = vec4(v_texcoord, 0.0, 1.0); }\n");
+  s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.kind, ShaderKind::Legacy);
+  EXPECT_EQ(final_line_of(s, "varying vec2"), 0);
+  EXPECT_EQ(origin_of(s, "#ifdef SHADERTOY"), std::make_pair((dir / "scene.frag").string(), 1));
+  EXPECT_EQ(join(validate(s)), "");
+
   // Not glslViewer's (a vec3), or in a Shadertoy shader: the code's own.
   write_file(dir / "scene.frag", "in vec3 v_texcoord;\nvoid main() { gl_FragColor = vec4(v_texcoord, 1.0); }\n");
   EXPECT_EQ(preprocess(dir / "scene.frag", {}).text.find("rm_Resolution"), std::string::npos);
