@@ -45,28 +45,19 @@ std::vector<std::string> names_core_reserves(std::string_view code, Dialect dial
   const size_t count = dialect == Dialect::EsSl300 ? kEsSl300Names.size() : kGlsl110Names.size();
   std::vector<Uses> uses(count);
   // One pass over the code's words: a scene may be megabytes long.
-  for (size_t i = 0; i < code.size();) {
-    if (lexing::is_digit(code[i])) {  // a number, suffix and all (1e5, 0xFFu)
-      while (i < code.size() && lexing::is_word_char(code[i])) ++i;
-      continue;
-    }
-    if (!lexing::is_word_start(code[i])) {
-      ++i;
-      continue;
-    }
-    const size_t begin = i;
-    while (i < code.size() && lexing::is_word_char(code[i])) ++i;
-    const std::string_view word = code.substr(begin, i - begin);
+  lexing::any_word(code, [&](size_t begin, size_t end) {
+    const std::string_view word = code.substr(begin, end - begin);
     const std::string_view* found = std::find(words, words + count, word);
-    if (found == words + count) continue;
-    const size_t next = lexing::skip_blanks(code, i);
+    if (found == words + count) return false;
+    const size_t next = lexing::skip_blanks(code, end);
     const char follows = next < code.size() ? code[next] : ';';
     Uses& use = uses[static_cast<size_t>(found - words)];
     if (lexing::is_word_start(follows) || (word == "layout" && follows == '('))
       use.as_qualifier = true;
     else
       use.as_name = true;
-  }
+    return false;
+  });
   std::vector<std::string> out;
   for (size_t w = 0; w < count; ++w)
     if (uses[w].as_name && !uses[w].as_qualifier && !defines_macro(code, words[w])) out.emplace_back(words[w]);
@@ -79,18 +70,18 @@ std::string with_names_restored(std::string_view message, const std::vector<std:
   if (words.empty()) return std::string(message);
   std::string out;
   out.reserve(message.size());
-  for (size_t i = 0; i < message.size();) {
-    if (!lexing::is_word_start(message[i])) {
-      out += message[i++];
-      continue;
+  size_t copied = 0;  // message[0, copied) is in out
+  lexing::any_word(message, [&](size_t begin, size_t end) {
+    const std::string_view word = message.substr(begin, end - begin);
+    if (word.substr(0, kPrefix.size()) == kPrefix &&
+        std::find(words.begin(), words.end(), word.substr(kPrefix.size())) != words.end()) {
+      out += message.substr(copied, begin - copied);
+      out += word.substr(kPrefix.size());
+      copied = end;
     }
-    const size_t begin = i;
-    while (i < message.size() && lexing::is_word_char(message[i])) ++i;
-    const std::string_view word = message.substr(begin, i - begin);
-    const bool renamed = word.substr(0, kPrefix.size()) == kPrefix &&
-                         std::find(words.begin(), words.end(), word.substr(kPrefix.size())) != words.end();
-    out += renamed ? word.substr(kPrefix.size()) : word;
-  }
+    return false;
+  });
+  out += message.substr(copied);
   return out;
 }
 

@@ -41,31 +41,6 @@ bool nothing_but_comment(std::string_view rest) {
   return at == rest.size() || rest.substr(at, 2) == "//";
 }
 
-namespace {
-
-// Calls visit(begin, end) for each word of `text`, in order, until it returns true.
-template <typename Visit>
-bool any_word(std::string_view text, Visit visit) {
-  size_t i = 0;
-  while (i < text.size()) {
-    if (!is_word_start(text[i])) {
-      // Digits that follow a letter belong to that word; here they start a number.
-      if (is_digit(text[i])) {
-        while (i < text.size() && is_word_char(text[i])) ++i;
-      } else {
-        ++i;
-      }
-      continue;
-    }
-    const size_t begin = i;
-    while (i < text.size() && is_word_char(text[i])) ++i;
-    if (visit(begin, i)) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 std::optional<size_t> find_word(std::string_view text, std::string_view word) {
   std::optional<size_t> found;
   any_word(text, [&](size_t begin, size_t end) {

@@ -42,6 +42,28 @@ std::optional<std::string_view> defined_macro(std::string_view line);
 // Whether `rest` holds nothing more than blanks and perhaps a // comment.
 bool nothing_but_comment(std::string_view rest);
 
+// Calls visit(begin, end) for each word of `text` (a number, suffix and
+// all, is none), in order, until it returns true; whether one did.
+template <typename Visit>
+bool any_word(std::string_view text, Visit visit) {
+  size_t i = 0;
+  while (i < text.size()) {
+    if (!is_word_start(text[i])) {
+      // Digits that follow a letter belong to that word; here they start a number.
+      if (is_digit(text[i])) {
+        while (i < text.size() && is_word_char(text[i])) ++i;
+      } else {
+        ++i;
+      }
+      continue;
+    }
+    const size_t begin = i;
+    while (i < text.size() && is_word_char(text[i])) ++i;
+    if (visit(begin, i)) return true;
+  }
+  return false;
+}
+
 // Where `text` first names `word` as a whole word.
 std::optional<size_t> find_word(std::string_view text, std::string_view word);
 // Whether `text` names `word` as a whole word.

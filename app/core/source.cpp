@@ -441,6 +441,7 @@ class Preprocessor {
   // the preprocessor's, and the host's declarations come first in the final
   // text: the #extension lines that open the code, outside any #if, are
   // taken from the body (each leaves a blank line) to follow the #version.
+  // `code` is the body, its comments stripped.
   std::vector<std::pair<std::string, Origin>> take_leading_extensions(std::string_view code) {
     std::vector<size_t> taken;  // line indices
     int depth = 0;              // of #if blocks
@@ -478,10 +479,11 @@ class Preprocessor {
   // pixel's place in the picture from 0 to 1. The host draws with no
   // vertex attributes: the declaration (`varying vec2 v_texcoord;`) is
   // taken out, and the name reads gl_FragCoord, which tiles and supersamples
-  // move; so does v_texcoord with it. Whether the code declared it.
-  bool take_texcoord_declaration() {
+  // move; so does v_texcoord with it. Whether `body_code` (the body, its
+  // comments stripped; lines taken since are no declarations) declared it.
+  bool take_texcoord_declaration(std::string_view body_code) {
     std::vector<size_t> found;
-    for_each_line(lexing::strip_comments(body_), [&](std::string_view line, int number) {
+    for_each_line(body_code, [&](std::string_view line, int number) {
       if (declares_texcoord(line)) found.push_back(static_cast<size_t>(number - 1));
       return found.empty();
     });
@@ -490,7 +492,10 @@ class Preprocessor {
   }
 
   void assemble() {
-    std::string code = lexing::strip_comments(body_);
+    // The body's code, line for line: what the host looks for is read here.
+    const std::string body_code = lexing::strip_comments(body_);
+    std::string active;  // the preprocessor's text, where that decides the kind
+    std::string_view code = body_code;
     bool has_main = lexing::has_call(code, "main", "void");
     bool has_main_image = lexing::has_call(code, "mainImage");
     const bool has_main_cubemap = lexing::has_call(code, "mainCubemap");
@@ -500,8 +505,9 @@ class Preprocessor {
     if (has_main && has_main_image) {
       std::string defined = std::string(kHostVersionLine) + "\n" + hw_performance_define();
       for (const auto& d : options_.defines) defined += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
-      if (auto active = active_code(defined + body_)) {
-        code = std::move(*active);
+      if (auto text = active_code(defined + body_)) {
+        active = std::move(*text);
+        code = active;
         has_main = lexing::has_call(code, "main", "void");
         has_main_image = lexing::has_call(code, "mainImage");
       }
@@ -531,7 +537,7 @@ class Preprocessor {
         ? "#version " + std::to_string(version_->number) + (version_->profile.empty() ? "" : " " + version_->profile)
         : kHostVersionLine;
     emit(out_.version_line, keep_version ? version_origin_ : Origin{kHostFile, ++host_lines_});
-    for (const auto& [line, origin] : take_leading_extensions(lexing::strip_comments(body_))) emit(line, origin);
+    for (const auto& [line, origin] : take_leading_extensions(body_code)) emit(line, origin);
     if (const std::string line = hw_performance_define(); !line.empty()) emit_host(line);
     int define_index = 0;
     for (const auto& d : options_.defines)
@@ -546,7 +552,7 @@ class Preprocessor {
       if (out_.kind == ShaderKind::Legacy) {
         emit_host(kLegacyPrelude);
         if (lexing::has_word(code, "gl_FragColor")) emit_host("#define gl_FragColor rm_FragColor\nout vec4 rm_FragColor;");
-        if ((texcoord = take_texcoord_declaration())) emit_host(kTexcoord);
+        if ((texcoord = take_texcoord_declaration(body_code))) emit_host(kTexcoord);
       }
       out_.movable_frag_coord = !redeclares_frag_coord(code);
       if ((texcoord || lexing::has_word(code, "gl_FragCoord")) && out_.movable_frag_coord)
