@@ -117,14 +117,19 @@ std::optional<std::pair<int, int>> first_mention(const std::string& name, const 
 }
 
 // The input a link error finds nothing to feed ("fragment shader input
-// `v_color' has no matching output in the previous stage" gives v_color), or
-// "" for any other message.
+// `v_color' has no matching output in the previous stage" gives v_color; an
+// input block's "Input block `Data' is not an output of the previous stage"
+// gives Data), or "" for any other message.
 std::string unfed_input(const std::string& message) {
-  const std::string_view prefix = "fragment shader input `", suffix = "' has no matching output in the previous stage";
-  if (message.rfind(prefix, 0) != 0 || message.size() < prefix.size() + suffix.size() ||
-      message.compare(message.size() - suffix.size(), suffix.size(), suffix) != 0)
-    return "";
-  return message.substr(prefix.size(), message.size() - prefix.size() - suffix.size());
+  constexpr std::pair<std::string_view, std::string_view> kForms[] = {
+      {"fragment shader input `", "' has no matching output in the previous stage"},
+      {"Input block `", "' is not an output of the previous stage"},
+  };
+  for (const auto& [prefix, suffix] : kForms)
+    if (message.rfind(prefix, 0) == 0 && message.size() >= prefix.size() + suffix.size() &&
+        message.compare(message.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return message.substr(prefix.size(), message.size() - prefix.size() - suffix.size());
+  return "";
 }
 
 // The function Mesa's link error names ("unresolved reference to function

@@ -78,6 +78,39 @@ class CallsWithoutBody : public glslang::TIntermTraverser {
   std::map<std::string, int> first_call_;
 };
 
+// The inputs from a vertex shader the code uses (an `in` or `varying`
+// variable or block), as the driver's linker names them. The host's vertex
+// shader passes nothing on, so the linker refuses any such use, reached or
+// not; glslang checks one stage and lets them pass. The log lines are the
+// linker's, so that `check` and a build say the same, at the declaration.
+class InputsNothingFeeds : public glslang::TIntermTraverser {
+ public:
+  void visitSymbol(glslang::TIntermSymbol* symbol) override {
+    const glslang::TType& type = symbol->getType();
+    const int line = symbol->getLoc().line;  // 0 for the list of globals: not a use
+    if (type.getQualifier().storage != glslang::EvqVaryingIn || line <= 0) return;
+    const bool block = type.getBasicType() == glslang::EbtBlock;
+    if (!block && symbol->getName().compare(0, 3, "gl_") == 0) return;
+    auto [at, added] = first_use_.emplace(Input{block, block ? type.getTypeName().c_str() : symbol->getName().c_str()}, line);
+    if (!added) at->second = std::min(at->second, line);
+  }
+  // The linker's lines for them, in the order of their first uses.
+  std::string log() const {
+    std::vector<std::pair<int, Input>> used;
+    for (const auto& [input, line] : first_use_) used.emplace_back(line, input);
+    std::sort(used.begin(), used.end());
+    std::string out;
+    for (const auto& [line, input] : used)
+      out += input.first ? "error: Input block `" + input.second + "' is not an output of the previous stage\n"
+                         : "error: fragment shader input `" + input.second + "' has no matching output in the previous stage\n";
+    return out;
+  }
+
+ private:
+  using Input = std::pair<bool, std::string>;  // a block?, and its name
+  std::map<Input, int> first_use_;
+};
+
 // Scalars in a value of `type`: its components, times its array sizes,
 // through structs. In double: glslang's own count, an int, overflows for
 // float a[65536][65536].
@@ -384,13 +417,15 @@ TreeVerdict check_tree(TIntermNode* root) {
   DeepestNode deepest;
   CallsWithoutBody calls;
   LargeArrays arrays;
+  InputsNothingFeeds inputs;
   root->traverse(&deepest);
   root->traverse(&calls);
   root->traverse(&arrays);
+  root->traverse(&inputs);
   const ChainDepth chains(root);
   verdict.depth = deepest.getMaxDepth(), verdict.depth_line = deepest.line;
   verdict.chain = chains.deepest, verdict.chain_line = chains.line;
-  verdict.log = calls.log() + arrays.log();
+  verdict.log = calls.log() + arrays.log() + inputs.log();
   return verdict;
 }
 

@@ -358,6 +358,29 @@ TEST(MapLog, AnInputNothingFeedsIsAtItsDeclaration) {
                             "nothing (glslViewer's v_texcoord is the one input it supplies)");
 }
 
+// `check` says what a build's link would: an input the host's vertex shader
+// does not feed is an error wherever the code uses it (in a function nothing
+// calls too, as the driver's linker counts it), and none where it only is
+// declared. A block is named by its block name.
+TEST(Check, AnInputNothingFeedsIsAnErrorBeforeTheDriver) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "varying vec4 v_color;\n"
+                                 "varying vec4 v_unused;\n"
+                                 "varying vec3 v_normal;\n"
+                                 "vec3 never_called() { return v_normal; }\n"
+                                 "void main() { gl_FragColor = v_color; }\n");
+  write_file(dir / "block.frag", "#version 330\nin Data { vec4 c; } d;\nout vec4 o;\nvoid main() { o = d.c; }\n");
+  const std::string tail =
+      " is an input from a vertex shader, and the host's passes on nothing (glslViewer's v_texcoord is the one "
+      "input it supplies)\n";
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":3:14: error: 'v_normal'" + tail +
+                             (dir / "scene.frag").string() + ":1:14: error: 'v_color'" + tail);
+  check_scene(dir / "block.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "block.frag").string() + ":2:4: error: 'Data'" + tail);
+}
+
 TEST(MapLog, UnresolvedFunctionPointsAtItsFirstMention) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
