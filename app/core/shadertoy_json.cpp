@@ -139,6 +139,32 @@ Diagnostic error_at(const std::string& text, size_t byte, std::string message) {
   return d;
 }
 
+// A pass's "code": its text, "" when there is none (null, or no key), or
+// nullopt with `error` saying so when it is something else: `"code": 42`
+// read as the shader "42" failed as a scene with no mainImage. The place is
+// the first "code" key whose value is not a string (the shaders' own quotes
+// are escaped in theirs); with none found, the JSON file is named alone.
+std::optional<std::string> code_of(const json& pass, const std::string& file, const std::string& text, Diagnostic* error) {
+  const auto it = pass.find("code");
+  if (it == pass.end() || it->is_null()) return "";
+  if (it->is_string()) return it->get<std::string>();
+  const char* what = it->is_number() ? "a number" : it->is_boolean() ? "true or false" : it->is_array() ? "a list" : "an object";
+  const std::string message = file + "'s \"code\" is " + what + ", not the shader's text";
+  for (size_t key = text.find("\"code\""); key != std::string::npos; key = text.find("\"code\"", key + 1)) {
+    const size_t colon = text.find_first_not_of(" \t\r\n", key + 6);
+    if (key > 0 && text[key - 1] == '\\') continue;
+    if (colon == std::string::npos || text[colon] != ':') continue;
+    const size_t value = text.find_first_not_of(" \t\r\n", colon + 1);
+    if (value != std::string::npos && text[value] != '"') {
+      *error = error_at(text, value, message);
+      return std::nullopt;
+    }
+  }
+  *error = Diagnostic{};
+  error->message = message;
+  return std::nullopt;
+}
+
 }  // namespace
 
 bool is_media_stand_in(const std::filesystem::path& pass) {
@@ -209,7 +235,9 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
     const std::string name = pass.contains("name") ? text_of(pass["name"]) : "";
     if (type == "common") {
       if (taken(ShadertoyProject::kCommon, name)) continue;
-      project.files[ShadertoyProject::kCommon] = pass.contains("code") ? text_of(pass["code"]) : "";
+      const auto code = code_of(pass, ShadertoyProject::kCommon, text, error);
+      if (!code) return std::nullopt;
+      project.files[ShadertoyProject::kCommon] = *code;
       project.has_common = true;
     } else if (type == "cubemap") {
       if (taken(kCubeFile, name)) continue;
@@ -248,8 +276,10 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
   }
 
   for (const PassText& p : passes) {
-    std::string text = p.pass->contains("code") ? text_of((*p.pass)["code"]) : "";
-    if (!text.empty() && text.back() != '\n') text += '\n';
+    auto code = code_of(*p.pass, p.file, text, error);
+    if (!code) return std::nullopt;
+    std::string pass_text = std::move(*code);
+    if (!pass_text.empty() && pass_text.back() != '\n') pass_text += '\n';
     const json& inputs = p.pass->contains("inputs") ? (*p.pass)["inputs"] : json::array();
     for (const json& input : inputs) {
       if (!input.is_object()) continue;
@@ -322,9 +352,9 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         spec.kind = ChannelSpec::Kind::Black;
       }
       spec.sampler = sampler_of(input, stand_in ? ChannelSpec::Kind::Image : spec.kind, spec.shape, where, &project.warnings);
-      text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";
+      pass_text += "#pragma channel" + std::to_string(channel) + " " + channel_spec_text(spec, file) + "\n";
     }
-    project.files[p.file] = text;
+    project.files[p.file] = pass_text;
   }
   return project;
 }

@@ -215,6 +215,24 @@ TEST(ShadertoyJson, MalformedJsonNamesItsLineAndColumn) {
             "last read: '\"void mainImage(        ...                '");
 }
 
+// A pass's code that is not text is an error at the value: `"code": 42` was
+// read as the shader "42", which failed as a scene with no mainImage. A
+// string in a shader that reads `"code": 1` is the shader's, and null is no code.
+TEST(ShadertoyJson, CodeThatIsNotTextIsAnErrorAtItsValue) {
+  std::string error;
+  EXPECT_FALSE(read(R"({"renderpass": [{"type": "image", "code": 42}]})", &error));
+  EXPECT_EQ(error, "1:43: image.frag's \"code\" is a number, not the shader's text");
+  EXPECT_FALSE(read("{\"renderpass\": [\n {\"type\": \"common\", \"code\": \"// \\\"code\\\": 1\"},\n"
+                    " {\"type\": \"image\", \"code\" :\n  [\"void mainImage(out vec4 c, in vec2 f) {}\"]}]}",
+                    &error));
+  EXPECT_EQ(error, "4:3: image.frag's \"code\" is a list, not the shader's text");
+  EXPECT_FALSE(read(R"({"renderpass": [{"type": "common", "code": {}}, {"type": "image", "code": ""}]})", &error));
+  EXPECT_EQ(error, "1:44: common.glsl's \"code\" is an object, not the shader's text");
+  auto p = read(R"({"renderpass": [{"type": "image", "code": null}]})", &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files.at(ShadertoyProject::kImage), "");
+}
+
 // A JSON edited by hand may put anything where an object was: each such
 // value is read as missing, never thrown out of the reader (a window saved
 // with an output of null was ended by nlohmann's type_error).
