@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/check.h"
+#include "core/dialect_names.h"
 
 namespace rm {
 
@@ -124,7 +125,8 @@ std::optional<Program> Program::build(const Source& source, Diagnostics* diags) 
     info.location = glGetUniformLocation(p.id(), name);
     for (GLint e = 0; e < info.size; ++e)
       info.elements.push_back(glGetUniformLocation(p.id(), (key + "[" + std::to_string(e) + "]").c_str()));
-    if (info.location >= 0) p.uniforms_[key] = std::move(info);
+    // Set by the name the code gives it: `uniform float smooth;` is rm_smooth to the driver.
+    if (info.location >= 0) p.uniforms_[with_names_restored(key, source.renamed)] = std::move(info);
   }
   return p;
 }

@@ -159,6 +159,25 @@ TEST_F(Cli, RenderSetGivesUniformsAndTheMetadataReproducesThem) {
   EXPECT_EQ(r.err, "raymarching: error: --set 'gian=0.5': the shader declares no uniform 'gian' of its own (it has gain, tint)\n");
 }
 
+// A uniform named with a word 4.50 core reserves (glslViewer's `smooth`,
+// Shadertoy's `buffer`) reaches the driver renamed, and still takes its
+// default and its --set value by the name the code gives it.
+TEST_F(Cli, RenderSetReachesAUniformTheDialectRenames) {
+  write_file(dir_ / "legacy.frag", "uniform float smooth;  // ui: default=0.5\n"
+                                   "void main() { gl_FragColor = vec4(smooth, 0.0, 0.0, 1.0); }\n");
+  write_file(dir_ / "toy.frag", "uniform float buffer;  // ui: default=0.5\n"
+                                "void mainImage(out vec4 c, in vec2 f) { c = vec4(buffer, 0.0, 0.0, 1.0); }\n");
+  for (const auto& [file, name] : {std::pair{"legacy.frag", "smooth"}, std::pair{"toy.frag", "buffer"}}) {
+    const std::string scene = (dir_ / file).string(), out = (dir_ / "out.exr").string();
+    test::Outcome r = run("render " + scene + " -o " + out + " --size 2x2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_pixels(out)[0], 0.5f) << file << ": the declared default";
+    r = run("render " + scene + " -o " + out + " --size 2x2 --set " + name + "=0.25");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_pixels(out)[0], 0.25f) << file;
+  }
+}
+
 // Silent on success, as compilers and linters are: exit 0 and no output.
 TEST_F(Cli, CheckOfAGoodShaderIsSilent) {
   test::Outcome r = run("check " + good());
