@@ -3,6 +3,9 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <sys/resource.h>
+
+#include <string>
 #include <vector>
 
 #include "core/gl_debug.h"
@@ -63,6 +66,14 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
     out->context_ = context;
     report_gl_errors();
     return out;
+  }
+  // Under an address-space limit Mesa cannot map its driver, and says the
+  // file is missing: the limit is the likelier cause then.
+  struct rlimit space {};
+  if (getrlimit(RLIMIT_AS, &space) == 0 && space.rlim_cur != RLIM_INFINITY) {
+    *error = "no EGL display offers an OpenGL 4.5 core context within this process's address-space limit (ulimit -v " +
+             std::to_string(space.rlim_cur / 1024) + " KiB; Mesa's llvmpipe needs more than 1 GiB)";
+    return nullptr;
   }
   *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";
   return nullptr;

@@ -404,6 +404,21 @@ TEST_F(Pathological, APictureLargerThanTheMemoryIsOneLine) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "small.png"));
 }
 
+// Under an address-space limit too small for llvmpipe, Mesa cannot map its
+// driver and says "No such file or directory": the host's line names the
+// limit, not a missing package.
+TEST_F(Pathological, AnAddressSpaceLimitTooSmallForTheDriverIsNamed) {
+  write_file(dir_ / "white.frag", kMain);
+  const test::Outcome r =
+      test::run_binary("render " + path("white.frag") + " -o " + path("out.png") + " --size 16x9", "ulimit -v 600000; ");
+  EXPECT_EQ(r.status, 2) << r.err;
+  const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+  EXPECT_EQ(last, "raymarching: error: no EGL display offers an OpenGL 4.5 core context within this process's "
+                  "address-space limit (ulimit -v 600000 KiB; Mesa's llvmpipe needs more than 1 GiB)\n")
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+}
+
 // With no thread to be had (out of memory for stacks, or past a limit of
 // threads), a command that needs none runs on the caller's stack, and one
 // that needs one ends in one line and status 2. Both used to abort (134) on
