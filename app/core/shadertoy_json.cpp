@@ -151,8 +151,8 @@ std::optional<std::string> code_of(const json& pass, const std::string& file, co
   const char* what = it->is_number() ? "a number" : it->is_boolean() ? "true or false" : it->is_array() ? "a list" : "an object";
   const std::string message = file + "'s \"code\" is " + what + ", not the shader's text";
   for (size_t key = text.find("\"code\""); key != std::string::npos; key = text.find("\"code\"", key + 1)) {
-    const size_t colon = text.find_first_not_of(" \t\r\n", key + 6);
     if (key > 0 && text[key - 1] == '\\') continue;
+    const size_t colon = text.find_first_not_of(" \t\r\n", key + 6);
     if (colon == std::string::npos || text[colon] != ':') continue;
     const size_t value = text.find_first_not_of(" \t\r\n", colon + 1);
     if (value != std::string::npos && text[value] != '"') {
