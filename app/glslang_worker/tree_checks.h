@@ -1,8 +1,9 @@
 // What the GL driver cannot take though glslang does, found in glslang's
 // tree of a parsed shader: nesting and chains too deep for the driver's
 // compiler to recurse on, calls to functions no body defines, arrays too
-// large for it to compile, and inputs no vertex shader of the host's feeds. This file builds without RTTI, as Debian's
-// glslang does, so that it may derive from glslang's traverser.
+// large for it to compile, and inputs no vertex shader of the host's feeds.
+// This file builds without RTTI, as Debian's glslang does, so that it may
+// derive from glslang's traverser.
 #pragma once
 #include <string>
 
