@@ -132,6 +132,64 @@ std::string unfed_input(const std::string& message) {
   return "";
 }
 
+// The uniform of the scene's own code with the most components, with the
+// final text's line and column of its name: the place for the driver's
+// "Too many fragment shader default uniform block components", which names
+// none. A size the code spells with a macro counts as 1.
+struct LargestUniform {
+  int line = 0, column = 0;
+  std::string name;
+  long long components = 0;
+};
+std::optional<LargestUniform> largest_uniform(const Source& source) {
+  constexpr std::pair<std::string_view, int> kComponents[] = {
+      {"float", 1}, {"int", 1},   {"uint", 1},  {"bool", 1},  {"vec2", 2},  {"ivec2", 2}, {"uvec2", 2},
+      {"bvec2", 2}, {"vec3", 3},  {"ivec3", 3}, {"uvec3", 3}, {"bvec3", 3}, {"vec4", 4},  {"ivec4", 4},
+      {"uvec4", 4}, {"bvec4", 4}, {"mat2", 4},  {"mat3", 9},  {"mat4", 16},
+  };
+  std::optional<LargestUniform> largest;
+  std::istringstream code(lexing::strip_comments(source.text));
+  int number = 0;
+  for (std::string line; std::getline(code, line);) {
+    ++number;
+    std::vector<std::string_view> words;
+    lexing::any_word(line, [&](size_t begin, size_t end) {
+      words.push_back(std::string_view(line).substr(begin, end - begin));
+      return words.size() >= 4;
+    });
+    if (words.size() < 3 || words[0] != "uniform" || source.locate(number).first.empty()) continue;
+    size_t type = 1;
+    if (words[1] == "lowp" || words[1] == "mediump" || words[1] == "highp") type = 2;
+    const auto known = std::find_if(std::begin(kComponents), std::end(kComponents),
+                                    [&](const auto& k) { return k.first == words[type]; });
+    if (known == std::end(kComponents) || type + 1 >= words.size()) continue;
+    const std::string_view name = words[type + 1];
+    long long components = known->second;
+    const size_t after = static_cast<size_t>(name.data() - line.data()) + name.size();
+    for (size_t at = lexing::skip_blanks(line, after); at < line.size() && line[at] == '[';) {
+      size_t digits = at + 1;
+      long long size = 0;
+      while (digits < line.size() && lexing::is_digit(line[digits]) && size < (1LL << 40))
+        size = size * 10 + (line[digits++] - '0');
+      if (size > 0) components *= size;
+      const size_t close = line.find(']', at);
+      if (close == std::string::npos) break;
+      at = lexing::skip_blanks(line, close + 1);
+    }
+    if (!largest || components > largest->components)
+      largest = LargestUniform{number, static_cast<int>(name.data() - line.data()) + 1, std::string(name), components};
+  }
+  return largest;
+}
+
+// Whether a link error says the uniforms take more than the driver allows
+// ("Too many fragment shader uniform components", "... default uniform
+// block components", "count of uniform locations > MAX_UNIFORM_LOCATIONS").
+bool uniforms_past_limit(const std::string& message) {
+  return (message.rfind("Too many fragment shader ", 0) == 0 && message.find(" uniform ") != std::string::npos) ||
+         message.rfind("count of uniform locations > MAX_UNIFORM_LOCATIONS", 0) == 0;
+}
+
 // The function Mesa's link error names ("unresolved reference to function
 // `f'" gives f), or "" for any other message.
 std::string unresolved_function(const std::string& message) {
@@ -334,6 +392,7 @@ std::optional<std::string> active_code(const std::string& text) {
 
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format) {
   Diagnostics out;
+  bool said_uniforms_past_limit = false;
   std::istringstream in(log);
   std::string text;
   while (std::getline(in, text)) {
@@ -405,6 +464,15 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       const Severity severity = d.severity;
       std::string message = std::move(d.message);
       d = locate(source, severity, at->first, at->second, std::move(message));
+    } else if (uniforms_past_limit(d.message)) {
+      // Mesa says so in up to three ways, one glued to the next: one error is the news.
+      if (said_uniforms_past_limit) continue;
+      said_uniforms_past_limit = true;
+      const std::string reason = d.message.substr(0, d.message.find("error: "));
+      if (const auto largest = largest_uniform(source))
+        d = locate(source, d.severity, largest->line, largest->column,
+                   "'" + largest->name + "' : its " + std::to_string(largest->components) +
+                       " components take the fragment shader's uniforms past what the driver allows (" + reason + ")");
     } else if (const std::string input = unfed_input(d.message); !input.empty()) {
       // The host's vertex shader passes nothing on; its declaration is the place.
       const Severity severity = d.severity;

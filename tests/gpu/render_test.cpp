@@ -152,6 +152,21 @@ TEST_F(Gpu, NamesTheOlderDialectsAllowDraw) {
   for (const char* name : {"toy.frag", "legacy.frag"}) expect_test_pattern(name);
 }
 
+// The driver's refusal of too many uniform components names no line: the
+// scene's largest uniform is the place.
+TEST_F(Gpu, TooManyUniformComponentsNameTheLargestUniform) {
+  write_file(dir_ / "big.frag", "uniform float gain;\nuniform vec4 table[100000];\n"
+                                "void mainImage(out vec4 c, in vec2 f) { c = gain * table[int(f.x)]; }\n");
+  Scene scene(dir_ / "big.frag", {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Failed);
+  // One error, though Mesa says it three ways; the driver's words (its limits) follow in parentheses.
+  ASSERT_EQ(scene.diagnostics().size(), 1u) << join(scene.diagnostics());
+  EXPECT_EQ(scene.diagnostics()[0].str().substr(0, scene.diagnostics()[0].str().find(" (")),
+            (dir_ / "big.frag").string() +
+                ":2:14: error: 'table' : its 400000 components take the fragment shader's uniforms past what the driver "
+                "allows");
+}
+
 // WebGL 1 shaders open with #extension GL_OES_standard_derivatives; the
 // driver takes it only before every declaration, the host's included.
 TEST_F(Gpu, AnExtensionAtTheTopOfEveryKindOfShaderBuilds) {

@@ -381,6 +381,24 @@ TEST(Check, AnInputNothingFeedsIsAnErrorBeforeTheDriver) {
   EXPECT_EQ(join(diags), (dir / "block.frag").string() + ":2:4: error: 'Data'" + tail);
 }
 
+// Too many uniform components for the driver names no line; the place is
+// the scene's uniform with the most, in whichever file declares it (one in
+// a comment, the host's own, a smaller one and a macro's size do not count).
+TEST(MapLog, TooManyUniformComponentsIsAtTheLargestUniform) {
+  TempDir dir;
+  write_file(dir / "inc.glsl", "// uniform vec4 commented[100000];\nuniform float small[10];\n"
+                               "#define N 100000\nuniform vec4 by_macro[N];\n  uniform highp vec3 u[2][50];\n");
+  write_file(dir / "scene.frag", "#include \"inc.glsl\"\nuniform mat4 m;\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(u[0][0], 1.0) + m[0]; }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  Diagnostics d = map_log("error: Too many fragment shader default uniform block components\n", s, LogFormat::Mesa);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].str(), (dir / "inc.glsl").string() +
+                            ":5:22: error: 'u' : its 300 components take the fragment shader's uniforms past what the "
+                            "driver allows (Too many fragment shader default uniform block components)");
+}
+
 TEST(MapLog, UnresolvedFunctionPointsAtItsFirstMention) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"
