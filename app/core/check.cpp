@@ -142,11 +142,6 @@ struct LargestUniform {
   long long components = 0;
 };
 std::optional<LargestUniform> largest_uniform(const Source& source) {
-  constexpr std::pair<std::string_view, int> kComponents[] = {
-      {"float", 1}, {"int", 1},   {"uint", 1},  {"bool", 1},  {"vec2", 2},  {"ivec2", 2}, {"uvec2", 2},
-      {"bvec2", 2}, {"vec3", 3},  {"ivec3", 3}, {"uvec3", 3}, {"bvec3", 3}, {"vec4", 4},  {"ivec4", 4},
-      {"uvec4", 4}, {"bvec4", 4}, {"mat2", 4},  {"mat3", 9},  {"mat4", 16},
-  };
   std::optional<LargestUniform> largest;
   std::istringstream code(lexing::strip_comments(source.text));
   int number = 0;
@@ -158,20 +153,21 @@ std::optional<LargestUniform> largest_uniform(const Source& source) {
       return words.size() >= 4;
     });
     if (words.size() < 3 || words[0] != "uniform" || source.locate(number).first.empty()) continue;
-    size_t type = 1;
-    if (words[1] == "lowp" || words[1] == "mediump" || words[1] == "highp") type = 2;
-    const auto known = std::find_if(std::begin(kComponents), std::end(kComponents),
-                                    [&](const auto& k) { return k.first == words[type]; });
-    if (known == std::end(kComponents) || type + 1 >= words.size()) continue;
+    const size_t type = lexing::is_precision(words[1]) ? 2 : 1;
+    const std::optional<int> known = lexing::components_of(words[type]);
+    if (!known || type + 1 >= words.size()) continue;
     const std::string_view name = words[type + 1];
-    long long components = known->second;
+    // Sizes and their product stop at 2^40, far past any driver's limit, so
+    // that `u[99999999999][99999999999]` cannot overflow.
+    constexpr long long kCap = 1LL << 40;
+    long long components = *known;
     const size_t after = static_cast<size_t>(name.data() - line.data()) + name.size();
     for (size_t at = lexing::skip_blanks(line, after); at < line.size() && line[at] == '[';) {
       size_t digits = at + 1;
       long long size = 0;
-      while (digits < line.size() && lexing::is_digit(line[digits]) && size < (1LL << 40))
+      while (digits < line.size() && lexing::is_digit(line[digits]) && size < kCap)
         size = size * 10 + (line[digits++] - '0');
-      if (size > 0) components *= size;
+      if (size > 0) components = size > kCap / components ? kCap : components * size;
       const size_t close = line.find(']', at);
       if (close == std::string::npos) break;
       at = lexing::skip_blanks(line, close + 1);

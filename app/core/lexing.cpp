@@ -4,6 +4,25 @@
 
 namespace rm::lexing {
 
+std::optional<int> components_of(std::string_view type) {
+  if (type == "float" || type == "int" || type == "uint" || type == "bool" || type == "double") return 1;
+  const auto size = [](char c) { return c >= '2' && c <= '4' ? std::optional<int>(c - '0') : std::nullopt; };
+  // vecN, ivecN, uvecN, bvecN, dvecN
+  if (!type.empty() && (type[0] == 'i' || type[0] == 'u' || type[0] == 'b' || type[0] == 'd')) {
+    if (type.substr(1, 3) == "vec" && type.size() == 5) return size(type[4]);
+    if (type[0] == 'd') type.remove_prefix(1);  // dmatN, dmatNxM
+  }
+  if (type.substr(0, 3) == "vec" && type.size() == 4) return size(type[3]);
+  // matN, matNxM
+  if (type.substr(0, 3) != "mat" || type.size() < 4) return std::nullopt;
+  const auto columns = size(type[3]);
+  if (!columns) return std::nullopt;
+  if (type.size() == 4) return *columns * *columns;
+  if (type.size() != 6 || type[4] != 'x') return std::nullopt;
+  const auto rows = size(type[5]);
+  return rows ? std::optional<int>(*columns * *rows) : std::nullopt;
+}
+
 size_t skip_blanks(std::string_view text, size_t at) {
   while (at < text.size() && is_blank(text[at])) ++at;
   return at;

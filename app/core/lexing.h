@@ -22,6 +22,14 @@ constexpr bool is_name(std::string_view text) {
   return true;
 }
 
+// A precision qualifier, which may stand between a declaration's storage word
+// and its type ("uniform highp vec3 c;").
+constexpr bool is_precision(std::string_view word) { return word == "lowp" || word == "mediump" || word == "highp"; }
+
+// How many components a value of a GLSL scalar, vector or matrix type holds
+// (vec3: 3, mat4: 16), or nullopt for any other word (samplers, structs).
+std::optional<int> components_of(std::string_view type);
+
 // The first position at or after `at` that is not a blank.
 size_t skip_blanks(std::string_view text, size_t at);
 // The first position at or after `at` that is not blank or '\n'.

@@ -102,7 +102,7 @@ bool declares_texcoord(std::string_view line) {
     at = lexing::skip_blanks(line, end);
   }
   if (at >= line.size() || line[at] != ';' || lexing::skip_blanks(line, at + 1) != line.size()) return false;
-  if (words.size() == 4 && (words[1] == "highp" || words[1] == "mediump" || words[1] == "lowp"))
+  if (words.size() == 4 && lexing::is_precision(words[1]))
     words.erase(words.begin() + 1);
   return words.size() == 3 && (words[0] == "varying" || words[0] == "in") && words[1] == "vec2" &&
          words[2] == "v_texcoord";

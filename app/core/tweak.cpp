@@ -65,7 +65,7 @@ std::optional<size_t> float_declaration(std::string_view code, size_t at) {
     const size_t end = word_end(code, at);
     const std::string_view word = code.substr(at, end - at);
     at = lexing::skip_space(code, end);
-    if (word == "const" || word == "highp" || word == "mediump" || word == "lowp" || word == "precise") continue;
+    if (word == "const" || lexing::is_precision(word) || word == "precise") continue;
     if (!is_float_type(word)) return std::nullopt;
     type_end = end;
   }

@@ -13,14 +13,14 @@ namespace rm {
 
 namespace {
 
+// The types a control can hold.
 struct TypeName {
   const char* glsl;
   UserUniform::Type type;
-  int components;
 };
-constexpr TypeName kTypes[] = {{"float", UserUniform::Type::Float, 1}, {"int", UserUniform::Type::Int, 1},
-                               {"bool", UserUniform::Type::Bool, 1},   {"vec2", UserUniform::Type::Vec2, 2},
-                               {"vec3", UserUniform::Type::Vec3, 3},   {"vec4", UserUniform::Type::Vec4, 4}};
+constexpr TypeName kTypes[] = {{"float", UserUniform::Type::Float}, {"int", UserUniform::Type::Int},
+                               {"bool", UserUniform::Type::Bool},   {"vec2", UserUniform::Type::Vec2},
+                               {"vec3", UserUniform::Type::Vec3},   {"vec4", UserUniform::Type::Vec4}};
 
 std::string_view next_word(std::string_view text, size_t* at) {
   *at = lexing::skip_blanks(text, *at);
@@ -187,7 +187,7 @@ UserUniforms find_user_uniforms(const Source& source, const std::string* given) 
     size_t p = 0;
     next_word(code, &p);  // "uniform"
     std::string_view type = next_word(code, &p);
-    if (type == "lowp" || type == "mediump" || type == "highp") type = next_word(code, &p);
+    if (lexing::is_precision(type)) type = next_word(code, &p);
     const TypeName* t = nullptr;
     for (const TypeName& candidate : kTypes)
       if (type == candidate.glsl) t = &candidate;
@@ -212,7 +212,7 @@ UserUniforms find_user_uniforms(const Source& source, const std::string* given) 
       UserUniform u;
       u.name = std::string(name);
       u.type = t->type;
-      u.components = t->components;
+      u.components = *lexing::components_of(t->glsl);
       if (u.type == UserUniform::Type::Int) u.max = 10.0f, u.step = 1.0f;
       u.initial.assign(static_cast<size_t>(u.components), 0.0f);
       u.path = path;

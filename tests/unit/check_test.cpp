@@ -399,6 +399,19 @@ TEST(MapLog, TooManyUniformComponentsIsAtTheLargestUniform) {
                             "driver allows (Too many fragment shader default uniform block components)");
 }
 
+TEST(MapLog, TheComponentsOfAHugeUniformStopAtACap) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "uniform mat2x3 m[4];\nuniform float huge[99999999999][99999999999][9];\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(huge[0][0][0]); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  Diagnostics d = map_log("error: Too many fragment shader uniform components\n", s, LogFormat::Mesa);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].str(), (dir / "scene.frag").string() +
+                            ":2:15: error: 'huge' : its 1099511627776 components take the fragment shader's uniforms "
+                            "past what the driver allows (Too many fragment shader uniform components)");
+}
+
 TEST(MapLog, UnresolvedFunctionPointsAtItsFirstMention) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n"

@@ -32,5 +32,18 @@ TEST(Lexing, CodeOnlyDiffersWhereTheTokensDo) {
   EXPECT_NE(code_only("x * 0.5"), code_only("x * 0.50"));
 }
 
+TEST(Lexing, ComponentsOfEveryScalarVectorAndMatrixType) {
+  EXPECT_EQ(components_of("float"), 1);
+  EXPECT_EQ(components_of("uint"), 1);
+  EXPECT_EQ(components_of("vec3"), 3);
+  EXPECT_EQ(components_of("bvec2"), 2);
+  EXPECT_EQ(components_of("dvec4"), 4);
+  EXPECT_EQ(components_of("mat3"), 9);
+  EXPECT_EQ(components_of("mat2x4"), 8);
+  EXPECT_EQ(components_of("dmat4x3"), 12);
+  for (const char* other : {"sampler2D", "vec5", "vec", "mat1", "mat3x", "mat3x5", "ivec", "uvec22", "Light", ""})
+    EXPECT_EQ(components_of(other), std::nullopt) << other;
+}
+
 }  // namespace
 }  // namespace rm::lexing
