@@ -60,6 +60,14 @@ Sampler default_sampler(ChannelSpec::Kind kind, ChannelSpec::Shape shape) {
   return s;
 }
 
+int channel_of_sampler(std::string_view name) {
+  for (const std::string_view prefix : {std::string_view("iChannel"), std::string_view("u_tex")})
+    if (name.size() == prefix.size() + 1 && name.substr(0, prefix.size()) == prefix && name.back() >= '0' &&
+        name.back() <= '3')
+      return name.back() - '0';
+  return -1;
+}
+
 bool is_shader_file(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   return ext == ".frag" || ext == ".glsl" || ext == ".fs";

@@ -49,6 +49,10 @@ struct ChannelSpec {
 // Shadertoy's default sampler for each kind of input.
 Sampler default_sampler(ChannelSpec::Kind kind, ChannelSpec::Shape shape = ChannelSpec::Shape::Flat);
 
+// N for the samplers channel N binds, iChannelN and glslViewer's u_texN
+// (0-3); -1 for any other name.
+int channel_of_sampler(std::string_view name);
+
 // Whether a named file is a shader (a buffer pass) rather than an image.
 bool is_shader_file(const std::filesystem::path& path);
 

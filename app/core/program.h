@@ -17,6 +17,7 @@ struct UniformInfo {
   GLenum type = 0;
   GLint size = 1;                 // array length
   std::vector<GLint> elements;    // location of each array element
+  bool sampler = false;           // a sampler of any shape (its value is a texture unit)
 };
 
 class Program {

@@ -6,6 +6,7 @@
 #include <new>
 #include <string>
 
+#include "core/channel_spec.h"
 #include "core/supersampling.h"
 
 namespace rm {
@@ -68,6 +69,10 @@ void bind_channels(const Program& program, const ChannelInputs& channels) {
     program.set_sampler("iChannel" + std::to_string(i), i);
     program.set_sampler("u_tex" + std::to_string(i), i);
   }
+  glBindTextureUnit(kNothingBoundUnit, 0);
+  glBindSampler(kNothingBoundUnit, 0);
+  for (const auto& [name, uniform] : program.uniforms())
+    if (uniform.sampler && channel_of_sampler(name) < 0) program.set_sampler(name, kNothingBoundUnit);
 }
 
 void warm_up(const Program& program, GLenum format, const ChannelInputs& channels) {

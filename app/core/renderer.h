@@ -51,7 +51,10 @@ using ChannelInputs = std::array<ChannelInput, 4>;
 void set_sampling_state();
 
 // Binds each channel's texture and sampler to its unit and points the
-// program's iChannelN (and u_texN) at it.
+// program's iChannelN (and u_texN) at it. Any other sampler the shader
+// declares (glslViewer's u_buffer0, which this host draws nothing for) reads
+// kNothingBoundUnit, where no texture is: black, not iChannel0 by default.
+constexpr int kNothingBoundUnit = 4;
 void bind_channels(const Program& program, const ChannelInputs& channels);
 
 // Draws one pixel of `program` into a throwaway target of `format`, reading

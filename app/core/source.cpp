@@ -5,6 +5,7 @@
 #include <system_error>
 #include <unordered_map>
 
+#include "core/channel_spec.h"
 #include "core/check.h"
 #include "core/dialect_names.h"
 #include "core/files.h"
@@ -630,31 +631,106 @@ Source preprocess(const fs::path& scene, const SourceOptions& options, const Fil
   return Preprocessor(options, files).run(scene);
 }
 
+namespace {
+
+// A sampler the scene's own code declares that no channel binds
+// (`uniform sampler2D u_buffer0;`), at its name.
+struct StraySampler {
+  std::string name;
+  int line = 0;      // in the final text
+  int channel = -1;  // glslViewer's u_texN with nothing bound: N
+};
+
+// What a read of a sampler no channel binds gets, and why: glslViewer's
+// buffer, double buffer and scene samplers name passes this host does not draw.
+std::string stray_sampler_message(const std::string& name) {
+  auto glslviewer_pass = [&](std::string_view prefix, std::string_view define) -> std::string {
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+        !lexing::is_digit(name[prefix.size()]))
+      return "";
+    return std::string(define) + name.substr(prefix.size());
+  };
+  std::string pass = glslviewer_pass("u_buffer", "BUFFER_");
+  if (pass.empty()) pass = glslviewer_pass("u_doubleBuffer", "DOUBLE_BUFFER_");
+  if (pass.empty() && (name == "u_scene" || name == "u_sceneDepth")) pass = "POSTPROCESSING";
+  if (!pass.empty())
+    return "'" + name + "' is read, but this host does not draw glslViewer's " + pass +
+           " pass, so it reads black (a buffer here is a file of its own: #pragma channelN \"FILE\" binds it to "
+           "iChannelN, or u_texN)";
+  return "'" + name + "' is read, but the host binds nothing to it, so it reads black (it binds iChannel0-3 "
+         "and u_tex0-3, to what #pragma channelN \"FILE\" names)";
+}
+
+}  // namespace
+
 Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound) {
   Diagnostics out;
+  auto warn_at = [&](int number, const std::string& name, std::string message) {
+    auto [path, at_line] = source.locate(number);
+    const std::optional<size_t> column = lexing::find_word(source.final_line_text(number), name);
+    Diagnostic d;
+    d.severity = Severity::Warning;
+    d.path = path;
+    d.line = at_line;
+    d.column = column ? static_cast<int>(*column) + 1 : 0;
+    d.message = std::move(message);
+    out.push_back(std::move(d));
+  };
+  auto unbound_message = [](const std::string& name, int c) {
+    return name + " is read but nothing is bound to it, so it reads transparent black (#pragma channel" +
+           std::to_string(c) + " \"FILE\" names an input)";
+  };
+  auto own_line = [&](int number) {  // not the host's (the prelude declares every channel)
+    return static_cast<size_t>(number) <= source.line_map.size() && source.line_map[static_cast<size_t>(number) - 1].file >= 0;
+  };
   std::array<bool, 4> warned = bound;
+  std::vector<StraySampler> strays;
+  std::unordered_map<std::string, size_t> stray_index;
   const std::string code = lexing::strip_comments(source.text);
   for_each_line(code, [&](std::string_view line, int number) {
-    if (static_cast<size_t>(number) > source.line_map.size() || source.line_map[static_cast<size_t>(number) - 1].file < 0)
-      return true;  // the host's own lines (the prelude declares every channel)
+    if (!own_line(number)) return true;
     for (int c = 0; c < 4; ++c) {
       const std::string name = "iChannel" + std::to_string(c);
       if (warned[static_cast<size_t>(c)] || !lexing::has_word(line, name)) continue;
       warned[static_cast<size_t>(c)] = true;
-      auto [path, at_line] = source.locate(number);
-      Diagnostic d;
-      d.severity = Severity::Warning;
-      d.path = path;
-      d.line = at_line;
-      const std::string text = source.final_line_text(number);
-      const size_t column = text.find(name);
-      d.column = column == std::string::npos ? 0 : static_cast<int>(column) + 1;
-      d.message = name + " is read but nothing is bound to it, so it reads transparent black (#pragma channel" +
-                  std::to_string(c) + " \"FILE\" names an input)";
-      out.push_back(std::move(d));
+      warn_at(number, name, unbound_message(name, c));
     }
+    // uniform [precision] samplerXX NAME: the code's own sampler, and glslViewer's u_texN.
+    std::vector<std::string_view> words;
+    lexing::any_word(line, [&](size_t begin, size_t end) {
+      words.push_back(line.substr(begin, end - begin));
+      return words.size() >= 4;
+    });
+    if (words.size() < 3 || words[0] != "uniform") return true;
+    const size_t type = lexing::is_precision(words[1]) ? 2 : 1;
+    if (type + 1 >= words.size()) return true;
+    const size_t sampler_at = words[type].find("sampler");
+    const std::string name(words[type + 1]);
+    if (sampler_at > 1 || stray_index.count(name)) return true;  // sampler2D, isampler3D, usamplerCube
+    const int channel = channel_of_sampler(name);
+    if (channel >= 0 && (name[0] == 'i' || bound[static_cast<size_t>(channel)])) return true;
+    stray_index[name] = strays.size();
+    strays.push_back({name, number, channel});
     return true;
   });
+  if (strays.empty()) return out;
+  // A stray sampler warns where it is declared, if any other line reads it.
+  std::vector<bool> read(strays.size(), false);
+  for_each_line(code, [&](std::string_view line, int number) {
+    if (!own_line(number)) return true;
+    lexing::any_word(line, [&](size_t begin, size_t end) {
+      const auto found = stray_index.find(std::string(line.substr(begin, end - begin)));
+      if (found != stray_index.end() && strays[found->second].line != number) read[found->second] = true;
+      return false;
+    });
+    return true;
+  });
+  for (size_t i = 0; i < strays.size(); ++i) {
+    if (!read[i]) continue;
+    const StraySampler& stray = strays[i];
+    warn_at(stray.line, stray.name,
+            stray.channel >= 0 ? unbound_message(stray.name, stray.channel) : stray_sampler_message(stray.name));
+  }
   return out;
 }
 

@@ -114,7 +114,10 @@ Source preprocess(const fs::path& scene, const SourceOptions& options,
 
 // One warning per channel that the shader's own code reads while nothing is
 // bound to it (`bound[c]` false): it would read transparent black without a
-// word. Each names the first line that reads it.
+// word. Each names the first line that reads it (glslViewer's u_texN, which
+// the code declares itself, its declaration). Also one per sampler the code
+// declares and reads that no channel binds (glslViewer's u_buffer0, a
+// sampler of its own), at its declaration: the host binds it to no texture.
 Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound);
 
 }  // namespace rm

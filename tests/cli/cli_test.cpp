@@ -91,6 +91,48 @@ TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
   EXPECT_EQ(r.err, "");
 }
 
+// A sampler the code declares and reads that no channel binds (glslViewer's
+// buffer passes, which this host does not draw, or a name of its own) is one
+// warning at its declaration, and reads black, not iChannel0's texture, which
+// every sampler read by default. A sampler declared and not read says nothing.
+TEST_F(Cli, ASamplerNoChannelBindsIsAWarningAndReadsBlack) {
+  write_file(dir_ / "gv.frag",
+             "#ifdef GL_ES\nprecision mediump float;\n#endif\n"
+             "uniform sampler2D u_buffer0;\nuniform sampler2D   u_doubleBuffer1; // ping-pong\n"
+             "uniform highp sampler2D u_scene;\nuniform sampler2D myTex;\nuniform sampler2D unused;\n"
+             "uniform sampler2D u_tex0;\nuniform sampler2D u_tex1;\nuniform vec2 u_resolution;\n"
+             "void main() {\n  vec2 st = gl_FragCoord.xy / u_resolution;\n#ifdef BUFFER_0\n"
+             "  gl_FragColor = vec4(1.0);\n#else\n"
+             "  gl_FragColor = texture2D(u_buffer0, st) + texture2D(u_doubleBuffer1, st) + texture2D(u_scene, st)\n"
+             "               + texture2D(myTex, st) + 0.25 * texture2D(u_tex0, st) + texture2D(u_tex1, st);\n"
+             "#endif\n}\n");
+  const std::string scene = (dir_ / "gv.frag").string();
+  auto image = OIIO::ImageOutput::create("white.png");
+  const std::vector<unsigned char> white(4 * 4 * 3, 255);
+  ASSERT_TRUE(image && image->open((dir_ / "white.png").string(), OIIO::ImageSpec(4, 4, 3, OIIO::TypeDesc::UINT8)));
+  image->write_image(OIIO::TypeDesc::UINT8, white.data());
+  image->close();
+  const test::Outcome r = run("check " + scene);
+  EXPECT_EQ(r.status, 0);
+  const std::string buffer = " pass, so it reads black (a buffer here is a file of its own: #pragma channelN \"FILE\" "
+                             "binds it to iChannelN, or u_texN)\n";
+  EXPECT_EQ(r.err,
+            scene + ":4:19: warning: 'u_buffer0' is read, but this host does not draw glslViewer's BUFFER_0" + buffer +
+                scene + ":5:21: warning: 'u_doubleBuffer1' is read, but this host does not draw glslViewer's "
+                        "DOUBLE_BUFFER_1" +
+                buffer + scene + ":6:25: warning: 'u_scene' is read, but this host does not draw glslViewer's "
+                                 "POSTPROCESSING" +
+                buffer + scene +
+                ":7:19: warning: 'myTex' is read, but the host binds nothing to it, so it reads black (it binds "
+                "iChannel0-3 and u_tex0-3, to what #pragma channelN \"FILE\" names)\n" +
+                scene + ":9:19: warning: u_tex0 is read but nothing is bound to it, so it reads transparent black "
+                        "(#pragma channel0 \"FILE\" names an input)\n" +
+                scene + ":10:19: warning: u_tex1 is read but nothing is bound to it, so it reads transparent black "
+                        "(#pragma channel1 \"FILE\" names an input)\n");
+  // With white on channel 0, only u_tex0's quarter shows.
+  EXPECT_NEAR(red_of(scene, " --channel0 " + (dir_ / "white.png").string()), 0.25f, 0.01f);
+}
+
 // render draws a shader's HW_PERFORMANCE == 1 branch on any renderer (the
 // window gives one on the CPU 0): frames of a sequence split across
 // machines must match, and an offline picture may take its time. A -D wins.
