@@ -13,19 +13,21 @@ namespace {
 constexpr std::array<std::string_view, 3> kEsSl300Names = {"buffer", "shared", "precise"};
 // Free in GLSL 1.10 and ES 1.00, keywords or reserved in 4.50 core; the
 // types 4.50 adds (uint, mat2x3, samplers) are left out: no one names a
-// variable so.
-constexpr std::array<std::string_view, 17> kGlsl110Names = {
-    "buffer", "shared",    "precise",       "sample",   "patch",  "subroutine", "coherent", "restrict",  "readonly",
-    "writeonly", "noperspective", "resource", "layout", "centroid", "flat",     "smooth",   "invariant"};
+// variable so. `texture` is 4.50's sampling function, and a common name
+// for a sampler in those dialects (`uniform sampler2D texture;`), which
+// hides the function.
+constexpr std::array<std::string_view, 18> kGlsl110Names = {
+    "buffer",   "shared", "precise",  "sample", "patch",    "subroutine", "coherent",  "restrict", "readonly",
+    "writeonly", "noperspective", "resource", "layout", "centroid", "flat", "smooth", "invariant", "texture"};
 
 constexpr std::string_view kPrefix = "rm_";
 
 // How `code` uses a word: as a name (a declaration, an operand, a
-// function), or as the qualifier 4.50 makes of it, which another word on the
-// same line follows (or, for layout, a parenthesis).
+// function), or as 4.50 does: a qualifier, which another word on the same
+// line follows, or (layout, texture) a word a parenthesis follows.
 struct Uses {
   bool as_name = false;
-  bool as_qualifier = false;
+  bool as_core_word = false;
 };
 
 bool defines_macro(std::string_view code, std::string_view word) {
@@ -52,15 +54,15 @@ std::vector<std::string> names_core_reserves(std::string_view code, Dialect dial
     const size_t next = lexing::skip_blanks(code, end);
     const char follows = next < code.size() ? code[next] : ';';
     Uses& use = uses[static_cast<size_t>(found - words)];
-    if (lexing::is_word_start(follows) || (word == "layout" && follows == '('))
-      use.as_qualifier = true;
+    if (lexing::is_word_start(follows) || ((word == "layout" || word == "texture") && follows == '('))
+      use.as_core_word = true;
     else
       use.as_name = true;
     return false;
   });
   std::vector<std::string> out;
   for (size_t w = 0; w < count; ++w)
-    if (uses[w].as_name && !uses[w].as_qualifier && !defines_macro(code, words[w])) out.emplace_back(words[w]);
+    if (uses[w].as_name && !uses[w].as_core_word && !defines_macro(code, words[w])) out.emplace_back(words[w]);
   return out;
 }
 

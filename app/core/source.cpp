@@ -81,12 +81,27 @@ void main() {
   rm_FragColor = rm_color;
 })glsl";
 
-// GLSL 1.10/1.20 and ES 1.00 names mapped onto a 4.50 core profile.
-const char* const kLegacyPrelude = R"(#define texture2D texture
-#define texture2DLod textureLod
-#define texture2DProj textureProj
-#define textureCube texture
-#define varying in)";
+// GLSL 1.10/1.20 and ES 1.00 names mapped onto a 4.50 core profile. The
+// sampling functions are functions, not macros onto `texture`: code of those
+// dialects may name a sampler `texture`, which is then renamed for the
+// compiler (core/dialect_names.h), and a macro's expansion would be renamed
+// with it. Their parameters are rm_ names, which no -D can reach.
+const char* const kLegacyPrelude = R"glsl(#define varying in
+vec4 texture2D(sampler2D rm_s, vec2 rm_p) { return texture(rm_s, rm_p); }
+vec4 texture2D(sampler2D rm_s, vec2 rm_p, float rm_bias) { return texture(rm_s, rm_p, rm_bias); }
+vec4 texture2DProj(sampler2D rm_s, vec3 rm_p) { return textureProj(rm_s, rm_p); }
+vec4 texture2DProj(sampler2D rm_s, vec4 rm_p) { return textureProj(rm_s, rm_p); }
+vec4 texture2DProj(sampler2D rm_s, vec3 rm_p, float rm_bias) { return textureProj(rm_s, rm_p, rm_bias); }
+vec4 texture2DProj(sampler2D rm_s, vec4 rm_p, float rm_bias) { return textureProj(rm_s, rm_p, rm_bias); }
+vec4 texture2DLod(sampler2D rm_s, vec2 rm_p, float rm_lod) { return textureLod(rm_s, rm_p, rm_lod); }
+vec4 texture2DProjLod(sampler2D rm_s, vec3 rm_p, float rm_lod) { return textureProjLod(rm_s, rm_p, rm_lod); }
+vec4 texture2DProjLod(sampler2D rm_s, vec4 rm_p, float rm_lod) { return textureProjLod(rm_s, rm_p, rm_lod); }
+vec4 texture3D(sampler3D rm_s, vec3 rm_p) { return texture(rm_s, rm_p); }
+vec4 texture3D(sampler3D rm_s, vec3 rm_p, float rm_bias) { return texture(rm_s, rm_p, rm_bias); }
+vec4 texture3DLod(sampler3D rm_s, vec3 rm_p, float rm_lod) { return textureLod(rm_s, rm_p, rm_lod); }
+vec4 textureCube(samplerCube rm_s, vec3 rm_p) { return texture(rm_s, rm_p); }
+vec4 textureCube(samplerCube rm_s, vec3 rm_p, float rm_bias) { return texture(rm_s, rm_p, rm_bias); }
+vec4 textureCubeLod(samplerCube rm_s, vec3 rm_p, float rm_lod) { return textureLod(rm_s, rm_p, rm_lod); })glsl";
 
 // glslViewer's v_texcoord (see take_texcoord_declaration).
 const char* const kTexcoord = "uniform vec2 rm_Resolution;\n#define v_texcoord (gl_FragCoord.xy / rm_Resolution)";

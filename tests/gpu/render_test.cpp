@@ -149,7 +149,12 @@ TEST_F(Gpu, NamesTheOlderDialectsAllowDraw) {
              "uniform vec2 u_resolution;\nvec4 sample(float smooth) { return vec4(0.25, 0.5, smooth, 1.0); }\n"
              "void main() {\n  float flat = gl_FragCoord.x / u_resolution.x, layout = 1.0;\n"
              "  gl_FragColor = sample(flat) * layout;\n}\n");
-  for (const char* name : {"toy.frag", "legacy.frag"}) expect_test_pattern(name);
+  // A sampler named `texture`, read by texture2D: nothing binds it, so it reads (0, 0, 0, 1).
+  write_file(dir_ / "texture.frag",
+             "uniform vec2 u_resolution;\nuniform sampler2D texture;\nvoid main() {\n"
+             "  vec4 black = texture2D(texture, vec2(0.5));\n"
+             "  gl_FragColor = vec4(0.25, 0.5, gl_FragCoord.x / u_resolution.x, 1.0) * black.a + vec4(black.rgb, 0.0);\n}\n");
+  for (const char* name : {"toy.frag", "legacy.frag", "texture.frag"}) expect_test_pattern(name);
 }
 
 // The driver's refusal of too many uniform components names no line: the

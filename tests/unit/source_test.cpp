@@ -241,6 +241,23 @@ TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
   EXPECT_EQ(origin_of(s, "void main()").second, 5);
 }
 
+// GLSL 1.10's sampling functions, each form of each, on a 4.50 core profile.
+TEST(Source, LegacySamplingFunctionsValidate) {
+  TempDir dir;
+  write_file(dir / "scene.frag",
+             "uniform sampler2D a;\nuniform sampler3D b;\nuniform samplerCube c;\nvoid main() {\n"
+             "  vec2 p = vec2(0.5);\n  vec4 v = texture2D(a, p) + texture2D(a, p, 1.0)\n"
+             "    + texture2DProj(a, p.xyx) + texture2DProj(a, p.xyxy) + texture2DProj(a, p.xyx, 1.0)\n"
+             "    + texture2DProj(a, p.xyxy, 1.0) + texture2DLod(a, p, 2.0) + texture2DProjLod(a, p.xyx, 2.0)\n"
+             "    + texture2DProjLod(a, p.xyxy, 2.0) + texture3D(b, p.xyx) + texture3D(b, p.xyx, 1.0)\n"
+             "    + texture3DLod(b, p.xyx, 2.0) + textureCube(c, p.xyx) + textureCube(c, p.xyx, 1.0)\n"
+             "    + textureCubeLod(c, p.xyx, 2.0);\n  gl_FragColor = v;\n}\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.kind, ShaderKind::Legacy);
+  EXPECT_EQ(join(validate(s)), "");
+}
+
 // Shadertoy's GLSL ES 3.00 and glslViewer's GLSL 1.10 leave words free
 // that 4.50 core reserves: code that names a variable so runs as it does
 // there, and an error about that variable names it as the code spells it.
@@ -260,6 +277,23 @@ TEST(Source, NamesTheOlderDialectsAllowCompile) {
   Source viewer = preprocess(dir / "viewer.frag", {});
   ASSERT_TRUE(viewer.ok()) << join(viewer.errors);
   EXPECT_EQ(viewer.kind, ShaderKind::Legacy);
+  EXPECT_EQ(join(validate(viewer)), "");
+
+  // `texture` names a sampler, and its misuse is named as the code spells it.
+  write_file(dir / "viewer.frag",
+             "uniform sampler2D texture;\nvoid main() {\n  gl_FragColor = texture2D(texture, vec2(0.5));\n}\n");
+  viewer = preprocess(dir / "viewer.frag", {});
+  EXPECT_EQ(viewer.renamed, (std::vector<std::string>{"texture"}));
+  EXPECT_EQ(join(validate(viewer)), "");
+  write_file(dir / "viewer.frag",
+             "uniform sampler2D texture;\nfloat texture;\nvoid main() {\n  gl_FragColor = texture2D(texture, vec2(0.5));\n}\n");
+  EXPECT_EQ(join(validate(preprocess(dir / "viewer.frag", {}))),
+            (dir / "viewer.frag").string() + ":2:7: error: 'texture' : redefinition\n");
+  // A call of texture() is 4.50's function, and the word is not renamed.
+  write_file(dir / "viewer.frag",
+             "uniform sampler2D u_tex0;\nvoid main() {\n  gl_FragColor = texture(u_tex0, vec2(0.5));\n}\n");
+  viewer = preprocess(dir / "viewer.frag", {});
+  EXPECT_TRUE(viewer.renamed.empty());
   EXPECT_EQ(join(validate(viewer)), "");
 
   write_file(dir / "toy.frag",
