@@ -9,6 +9,7 @@
 
 #include "core/dialect_names.h"
 #include "core/glslang_client.h"
+#include "core/glslang_words.h"
 #include "core/left_open.h"
 #include "core/lexing.h"
 
@@ -90,14 +91,6 @@ int column_in_line(const std::string& message, const std::string& line_text) {
   if (needle.empty()) return 0;
   size_t at = line_text.find(needle);
   return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
-}
-
-// glslang's words for a parser stack that ran out, in words that say why.
-std::string plain_words(std::string message) {
-  if (message.size() >= 16 && message.compare(message.size() - 16, 16, "memory exhausted") == 0)
-    return "nested too deeply for glslang's parser (its stack holds 10000 levels of parentheses, "
-           "brackets and blocks)";
-  return message;
 }
 
 // The final text's first line (1-based) and column that name `name` as a
@@ -430,7 +423,8 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
             if (!left_open) left_open = declaration_left_open_before(source, *final_line, col, message);
           }
           if (left_open) {
-            out.push_back(locate(source, *severity, left_open->final_line, left_open->column, left_open->message));
+            out.push_back(
+                locate(source, *severity, left_open->final_line, left_open->column, plain_words(left_open->message)));
             continue;
           }
           out.push_back(locate(source, *severity, *final_line, col, plain_words(message)));

@@ -88,7 +88,7 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, int e
   const std::string_view unexpected = "syntax error, unexpected ";
   const size_t at = message.find(unexpected);
   const size_t token_end = at == std::string::npos ? at : message.find_first_of(", ", at + unexpected.size());
-  if (token_end == std::string::npos || column == 0) return std::nullopt;
+  if (token_end == std::string::npos) return std::nullopt;
   const std::string code = lexing::strip_comments(source.text);
   size_t failing_at = std::string::npos;  // where the error's line starts
   for_each_line(code, [&](std::string_view line, int number) {
@@ -96,7 +96,11 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, int e
     return number < error_line;
   });
   if (failing_at == std::string::npos) return std::nullopt;
-  if (lexing::skip_blanks(code, failing_at) + 1 - failing_at != static_cast<size_t>(column)) return std::nullopt;
+  // The token is the first of its line, or the text's end (which glslang
+  // names INT, on the line after the last).
+  const bool at_text_end = code.find_first_not_of(" \t\r\n\f\v", failing_at) == std::string::npos;
+  if (!at_text_end && lexing::skip_blanks(code, failing_at) + 1 - failing_at != static_cast<size_t>(column))
+    return std::nullopt;
   // Back to the code before it, past whole conditionals (the host's
   // #ifdef RM_VIEW): had one been compiled, the error would be in it.
   int depth = 0;

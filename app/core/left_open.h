@@ -28,8 +28,9 @@ std::optional<LeftOpen> conditional_left_open(const Source& source);
 std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_line);
 
 // For glslang's "syntax error, unexpected TOKEN" at the first token of
-// `error_line` (found at `column`, 0 if not): the end of the user's file
-// whose code comes just before, in another file, where the ';' or ')' goes.
+// `error_line` (found at `column`, 0 if not), or at the end of the text: the
+// end of the user's file whose code comes just before, in another file (or
+// none), where the ';' or ')' goes.
 std::optional<LeftOpen> declaration_left_open_before(const Source& source, int error_line, int column,
                                                      const std::string& message);
 

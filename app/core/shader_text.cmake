@@ -17,6 +17,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/diagnostics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/left_open.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/glslang_words.cpp
   ${CMAKE_CURRENT_LIST_DIR}/glslang_client.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
   ${CMAKE_CURRENT_LIST_DIR}/channel_spec.cpp

@@ -87,19 +87,25 @@ TEST(Check, SyntaxErrorAtAFilesEndIsPutThere) {
   Diagnostics diags;
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
-                             ":2:20: error: '' :  syntax error at the end of the file, expecting COMMA or SEMICOLON\n");
+                             ":2:20: error: syntax error at the end of the file, expecting ',' or ';'\n");
 
   write_file(dir / "lib.glsl", "float g(float a\n");
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "lib.glsl").string() +
-                             ":1:16: error: '' :  syntax error at the end of the file, expecting RIGHT_PAREN\n");
+                             ":1:16: error: syntax error at the end of the file, expecting ')'\n");
+
+  // A complete shader: no host code follows, and glslang names the text's end INT.
+  write_file(dir / "full.frag", "#version 330 core\nout vec4 o;\nvoid main() { o = vec4(1.0); }\nfloat x = 1.0\n\n");
+  check_scene(dir / "full.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "full.frag").string() +
+                             ":4:14: error: syntax error at the end of the file, expecting ',' or ';'\n");
 }
 
 // A scene's macro that breaks the host's main() is not what the scene left
 // open at its end: it is named at its #define. And an error in the middle of
-// a line is where glslang says: it names a keyword in capitals, and the
-// column is found from it.
+// a line is where glslang says: it names a keyword in capitals, the column
+// is found from it, and the message spells it as the code does.
 TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
   TempDir dir;
   write_file(dir / "scene.frag", "#define rm_color 1.0\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
@@ -107,12 +113,12 @@ TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
                              ":1:9: error: the scene's #define rm_color changes the code the host adds around the "
-                             "scene: '' :  syntax error, unexpected FLOATCONSTANT, expecting COMMA or SEMICOLON\n");
+                             "scene: syntax error, unexpected float constant, expecting ',' or ';'\n");
 
   write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0) return; }\n");
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
-                             ":1:55: error: '' :  syntax error, unexpected RETURN, expecting COMMA or SEMICOLON\n");
+                             ":1:55: error: syntax error, unexpected 'return', expecting ',' or ';'\n");
 }
 
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
@@ -435,7 +441,7 @@ TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
   Diagnostics diags;
   check_scene(dir / "scene.frag", {}, &diags);
   ASSERT_GE(count_errors(diags), 1);
-  EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: '' :  syntax error, unexpected SEMICOLON");
+  EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: syntax error, unexpected ';'");
 }
 
 }  // namespace

@@ -1,0 +1,21 @@
+// glslang's messages in the words a reader of the code knows.
+//
+// glslang reports a syntax error as its parser's grammar names it:
+// `'' :  syntax error, unexpected RIGHT_BRACE, expecting COMMA or SEMICOLON`.
+// The empty token in front says nothing, and RIGHT_BRACE is `}` in the
+// code. The words here are what a compiler says:
+// `syntax error, unexpected '}', expecting ',' or ';'`.
+#pragma once
+#include <string>
+#include <string_view>
+
+namespace rm {
+
+// `message` (glslang's, after its `ERROR: 0:LINE:`) with an empty token's
+// `'' : ` dropped, each of the grammar's token names in a syntax error
+// spelt as the code spells it ('}', 'return', 'vec4') or named as what it
+// stands for (identifier, float constant), and a parser stack that ran out
+// said in words that say why.
+std::string plain_words(std::string_view message);
+
+}  // namespace rm
