@@ -17,19 +17,6 @@ namespace rm {
 
 namespace {
 
-// The spelling of the parser tokens glslang names in "unexpected X".
-const char* token_spelling(const std::string& name) {
-  static const std::pair<const char*, const char*> tokens[] = {
-      {"SEMICOLON", ";"}, {"COMMA", ","},       {"DOT", "."},          {"COLON", ":"},
-      {"EQUAL", "="},     {"PLUS", "+"},        {"DASH", "-"},         {"STAR", "*"},
-      {"SLASH", "/"},     {"LEFT_PAREN", "("},  {"RIGHT_PAREN", ")"},  {"LEFT_BRACE", "{"},
-      {"RIGHT_BRACE", "}"}, {"LEFT_BRACKET", "["}, {"RIGHT_BRACKET", "]"}, {"QUESTION", "?"},
-  };
-  for (const auto& [token, spelling] : tokens)
-    if (name == token) return spelling;
-  return nullptr;
-}
-
 // A log line read from left to right. Compiler logs quote the user's code,
 // which can be any length, so they are read by hand rather than by std::regex
 // (whose matcher recurses once per character).
@@ -64,6 +51,23 @@ class LogLine {
   size_t at_ = 0;
 };
 
+// glslang's 'assign' is an '=' of the line: the line's only one, if it has
+// one ('==', '<=', '+=' and their like are other tokens).
+std::optional<size_t> sole_assignment(std::string_view line) {
+  std::optional<size_t> found;
+  for (size_t i = 0; i < line.size(); ++i) {
+    if (line[i] != '=') continue;
+    if (i + 1 < line.size() && line[i + 1] == '=') {
+      ++i;
+      continue;
+    }
+    if (i > 0 && std::strchr("=!<>+-*/%&|^", line[i - 1])) continue;
+    if (found) return std::nullopt;
+    found = i;
+  }
+  return found;
+}
+
 // glslang names no column. Where its message quotes a token, or names the
 // unexpected one, find that token on the line.
 int column_in_line(const std::string& message, const std::string& line_text) {
@@ -75,19 +79,22 @@ int column_in_line(const std::string& message, const std::string& line_text) {
                                     message[end] == '_'))
       ++end;
     const std::string token = message.substr(unexpected + 11, end - unexpected - 11);
-    if (const char* spelling = token_spelling(token)) {
-      needle = spelling;
-    } else if (!token.empty() && token != "IDENTIFIER" && token != "TYPE_NAME" && token.find("CONSTANT") == token.npos) {
-      // A keyword: glslang names it in capitals (VOID, VEC3, RETURN).
-      std::string keyword = token;
-      for (char& c : keyword) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      const std::optional<size_t> at = lexing::find_word(line_text, keyword);
-      return at ? static_cast<int>(*at) + 1 : 0;
+    if (const std::optional<std::string> spelling = token_spelling(token)) {
+      if (!lexing::is_word_start((*spelling)[0])) {
+        needle = *spelling;
+      } else {  // a keyword, as a word of its own
+        const std::optional<size_t> at = lexing::find_word(line_text, *spelling);
+        return at ? static_cast<int>(*at) + 1 : 0;
+      }
     }
   }
   const size_t open = message.find('\'');
   const size_t close = open == std::string::npos ? open : message.find('\'', open + 1);
   if (needle.empty() && close != std::string::npos) needle = message.substr(open + 1, close - open - 1);
+  if (needle == "assign") {
+    const std::optional<size_t> at = sole_assignment(line_text);
+    return at ? static_cast<int>(*at) + 1 : 0;
+  }
   if (needle.empty()) return 0;
   size_t at = line_text.find(needle);
   return at == std::string::npos ? 0 : static_cast<int>(at) + 1;

@@ -444,5 +444,24 @@ TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
   EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: syntax error, unexpected ';'");
 }
 
+// A type error names the types as GLSL writes them, and an assignment's is
+// at its '=' when the line has one.
+TEST(Check, ATypeErrorNamesTheTypesAsGlslDoes) {
+  test::TempDir dir;
+  test::write_file(dir / "scene.frag",
+                   "void mainImage(out vec4 c, in vec2 f) {\n  vec3 a = vec3(1.0);\n  c = a;\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":3:5: error: '=' : cannot convert from 'vec3' to 'out vec4'\n");
+  test::write_file(dir / "scene.frag",
+                   "void mainImage(out vec4 c, in vec2 f) {\n  vec3 a = vec3(1.0); c = a * mat2(1.0);\n}\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
+                             ":2:29: error: '*' : wrong operand types: no operation '*' exists that takes a left-hand "
+                             "operand of type 'vec3' and a right operand of type 'const mat2' (or there is no "
+                             "acceptable conversion)\n" +
+                             (dir / "scene.frag").string() + ":2: error: '=' : cannot convert from 'vec3' to 'out vec4'\n");
+}
+
 }  // namespace
 }  // namespace rm
