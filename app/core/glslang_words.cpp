@@ -93,13 +93,15 @@ std::string glsl_type(std::string description) {
 }
 
 // Every quoted type in `message` (glslang quotes a token as "'='", and a
-// type with a blank first: "' const float'") as GLSL writes it.
+// type with a blank first: "' const float'") as GLSL writes it. glslang
+// cuts a message at about 1 KB, so a struct's type may run to the end
+// with no closing quote.
 std::string with_glsl_types(std::string_view message) {
   std::string out;
   size_t at = 0;
-  for (size_t open = message.find('\''); open != std::string_view::npos; open = message.find('\'', at + 1)) {
-    const size_t close = message.find('\'', open + 1);
-    if (close == std::string_view::npos) break;
+  for (size_t open = message.find('\''); open != std::string_view::npos && at < message.size();
+       open = message.find('\'', at + 1)) {
+    const size_t close = std::min(message.find('\'', open + 1), message.size());
     out += message.substr(at, open + 1 - at);
     const std::string_view quoted = message.substr(open + 1, close - open - 1);
     out += quoted.substr(0, 1) == " " ? glsl_type(std::string(quoted.substr(1))) : std::string(quoted);

@@ -41,6 +41,10 @@ TEST(GlslangWords, TypesAreWrittenAsGlslWritesThem) {
   EXPECT_EQ(plain_words("'assign' :  cannot convert from ' temp structure{ global float a,  global 2-component "
                         "vector of uint b}' to ' uniform sampler2D'"),
             "'=' : cannot convert from 'structure{ float a,  uvec2 b}' to 'uniform sampler2D'");
+  // glslang cut the message inside the type.
+  EXPECT_EQ(plain_words("'assign' :  cannot convert from ' temp structure{ global float a,  global 3-component vec"),
+            "'=' : cannot convert from 'structure{ float a,  3-component vec");
+  EXPECT_EQ(plain_words("'x' : it's"), "'x' : it's");
 }
 
 TEST(GlslangWords, OtherMessagesLoseOnlyAnEmptyTokenAndABlank) {
