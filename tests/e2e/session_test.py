@@ -112,9 +112,20 @@ class Session:
         with open(f"/proc/{self.proc.pid}/status") as f:
             return int(re.search(r"VmRSS:\s+(\d+) kB", f.read()).group(1))
 
-    def last_census(self):
-        lines = re.findall(r"gl objects: (.*)\n", self.stderr())  # whole lines: the log is being written
-        return lines[-1] if lines else None
+    def log_size(self):
+        return os.path.getsize(self.err_path)
+
+    def census_after(self, offset):
+        """The census of the first reload logged past byte `offset` (taken
+        before the save), waited for: `saved` sees the reload line, and the
+        census line after it may not be written yet. The previous reload's
+        census may come after `offset` too, so it is the reload's own."""
+        def census():
+            with open(self.err_path, "rb") as f:
+                f.seek(offset)
+                found = re.search(rb"raymarching: reload .*\n(?:.*\n)*?.*gl objects: (.*)\n", f.read())
+            return found.group(1).decode() if found else None
+        return wait_for(census, timeout=20)
 
     def shot(self):
         """Presses F12; returns the new picture's path, or None."""
@@ -173,9 +184,10 @@ def census_at_rest(s, note):
         since = log.rfind("raymarching: reload ok")
         return "twins built for generation" in log[since:] and refined(s, since)
 
-    if not wait_for(rested, timeout=60) or not saved(s, broken(note)):
+    if not wait_for(rested, timeout=60):
         return None
-    return s.last_census()
+    since = s.log_size()
+    return s.census_after(since) if saved(s, broken(note)) else None
 
 
 def reload_many(s, count, check_rss, trace=None):
@@ -187,6 +199,7 @@ def reload_many(s, count, check_rss, trace=None):
     start = time.monotonic()
     for i in range(count):
         text = solid(colour_of(i), f"save {i}", f"c{i}") if i % 2 == 0 else broken(f"save {i}")
+        since = s.log_size()
         if not saved(s, text):
             check(f"reload {i + 1} of {count} is seen", False, s.stderr()[-2000:])
             return
@@ -195,7 +208,7 @@ def reload_many(s, count, check_rss, trace=None):
             rss_warm, census_warm = s.rss_kb(), census_at_rest(s, "census after the first reloads")
             start += time.monotonic() - resting  # the reloads' time, not the wait for rest
         if trace and (i + 1) % 10 == 0:
-            samples.append((i + 1, s.rss_kb(), s.last_census()))
+            samples.append((i + 1, s.rss_kb(), s.census_after(since)))
     seconds = time.monotonic() - start
     if trace:
         write_trace(trace, samples, rss_warm, warm)
