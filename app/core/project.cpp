@@ -67,7 +67,7 @@ const Source& Project::image_source() const {
   return ready() ? image().scene->source() : none;
 }
 
-PassWalk walk_passes(const fs::path& image, const std::function<const Source*(const fs::path&)>& visit,
+PassWalk walk_passes(const fs::path& image, const std::function<VisitedPass(const fs::path&)>& visit,
                      Diagnostics* diags, const std::array<bool, 4>& image_channels_given) {
   PassWalk walk;
   walk.reached = {image};
@@ -82,7 +82,8 @@ PassWalk walk_passes(const fs::path& image, const std::function<const Source*(co
   std::vector<std::pair<fs::path, ChannelSpec>> reads;  // reader, and a buffer it reads
   for (size_t i = 0; i < walk.reached.size(); ++i) {
     const fs::path file = walk.reached[i];
-    const Source* source = visit(file);
+    const VisitedPass visited = visit(file);
+    const Source* source = visited.source;
     if (!source) {
       walk.ok = false;
       continue;
@@ -91,7 +92,7 @@ PassWalk walk_passes(const fs::path& image, const std::function<const Source*(co
     std::array<bool, 4> bound{};
     for (size_t c = 0; c < 4; ++c)
       bound[c] = source->channels[c].kind != ChannelSpec::Kind::None || (i == 0 && image_channels_given[c]);
-    const Diagnostics unbound = unbound_channel_reads(*source, bound);
+    const Diagnostics unbound = unbound_channel_reads(*source, bound, visited.active);
     diags->insert(diags->end(), unbound.begin(), unbound.end());
     if (i == 0 && source->cubemap)
       graph_error(image, "the image pass defines mainCubemap: open the pass that reads the cube map");
@@ -130,15 +131,16 @@ Source check_project(const ProjectFiles& from, const SourceOptions& options, Dia
     diags->insert(diags->end(), warnings.begin(), warnings.end());
   }
   std::map<fs::path, Source> sources;
+  std::map<fs::path, std::string> active;
   const fs::path image = fs::absolute(from.image).lexically_normal();  // as the passes name each other
   walk_passes(
       image,
-      [&](const fs::path& file) -> const Source* {
+      [&](const fs::path& file) -> VisitedPass {
         Diagnostics found;
-        Source source = check_scene(file, with_common, &found, from.files);
+        Source source = check_scene(file, with_common, &found, from.files, &active[file]);
         diags->insert(diags->end(), found.begin(), found.end());
-        if (count_errors(found) > 0) return nullptr;
-        return &(sources[file] = std::move(source));
+        if (count_errors(found) > 0) return {};
+        return {&(sources[file] = std::move(source)), active[file]};
       },
       diags);
   auto found = sources.find(image);
@@ -162,7 +164,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
   // Every pass reachable from the image pass, the image first.
   const PassWalk walk = walk_passes(
       image_path_,
-      [&](const fs::path& file) -> const Source* {
+      [&](const fs::path& file) -> VisitedPass {
         Scene& scene = scene_for(file);
         const ReloadStatus status = scene.prepare(cancelled);
         times_ += scene.times();
@@ -173,8 +175,8 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
         // Unchanged since a failed attempt is still failed.
         if (status == ReloadStatus::Failed || (status == ReloadStatus::Unchanged && count_errors(diags) > 0) ||
             (!scene.program() && status != ReloadStatus::Swapped))
-          return nullptr;
-        return &scene.latest_source();
+          return {};
+        return {&scene.latest_source(), scene.latest_active()};
       },
       &diagnostics_, channels_given);
   const std::vector<fs::path>& reached = walk.reached;

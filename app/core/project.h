@@ -43,9 +43,13 @@ ProjectFiles project_files(const fs::path& path, const fs::path& media_dir = {})
 
 // The pass-graph rules that need no GL, shared by Project::reload and
 // check_project: walks every pass reachable from `image`, the image first,
-// calling visit(file) for each; visit returns the pass's source, or nullptr
-// if the pass failed. The graph's own errors (a pass reading the image, a
+// calling visit(file) for each; visit returns the pass's source, or a null
+// one if the pass failed. The graph's own errors (a pass reading the image, a
 // cube pass read flat, too many passes) go to *diags.
+struct VisitedPass {
+  const Source* source = nullptr;  // null: the pass failed
+  std::string_view active;         // its active_code() (core/check.h), if known
+};
 struct PassWalk {
   std::vector<fs::path> reached;       // image first
   std::map<fs::path, int> cube_size;   // the Cube A passes: the largest size=N a reader gives; 0: none
@@ -53,7 +57,7 @@ struct PassWalk {
 };
 // Also warns of channels a pass reads with nothing bound (`image_channels_given`:
 // the command line's --channelN files, which bind the image pass's channels).
-PassWalk walk_passes(const fs::path& image, const std::function<const Source*(const fs::path&)>& visit,
+PassWalk walk_passes(const fs::path& image, const std::function<VisitedPass(const fs::path&)>& visit,
                      Diagnostics* diags, const std::array<bool, 4>& image_channels_given = {});
 
 // `check`: preprocesses and validates every pass with glslang, with no GL.

@@ -10,13 +10,14 @@
 
 namespace rm {
 
-Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags, const FileSystem& files) {
+Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags, const FileSystem& files,
+                   std::string* active) {
   Source source = preprocess(path, options, files);
   if (!source.ok()) {
     *diags = source.errors;
     return source;
   }
-  *diags = validate(source);
+  *diags = validate(source, active);
   return source;
 }
 

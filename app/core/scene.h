@@ -38,8 +38,9 @@ enum class ReloadStatus {
 };
 
 // Preprocesses and validates with glslang: all that `check` does, no GL.
+// With `active`, also glslang's preprocessor output there (core/check.h).
 Source check_scene(const fs::path& path, const SourceOptions& options, Diagnostics* diags,
-                   const FileSystem& files = disk_file_system());
+                   const FileSystem& files = disk_file_system(), std::string* active = nullptr);
 
 class Scene {
  public:
@@ -68,6 +69,9 @@ class Scene {
   const Source& latest_source() const {
     return pending_tweak_ ? pending_tweak_->source : pending_ ? pending_->source : good_source_;
   }
+  // Its active_code(): the exact program's while a tweak is prepared (the
+  // same lines, other numbers).
+  const std::string& latest_active() const { return pending_ && !pending_tweak_ ? pending_->active : good_active_; }
   const Diagnostics& latest_diagnostics() const {
     return pending_ || pending_tweak_ ? pending_diagnostics_ : diagnostics_;
   }

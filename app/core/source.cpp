@@ -678,7 +678,7 @@ std::string stray_sampler_message(const std::string& name) {
 
 }  // namespace
 
-Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound) {
+Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound, std::string_view active) {
   Diagnostics out;
   auto warn_at = [&](int number, const std::string& name, std::string message) {
     auto [path, at_line] = source.locate(number);
@@ -702,7 +702,8 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
   std::vector<StraySampler> strays;
   std::unordered_map<std::string, size_t> stray_index;
   const std::string code = lexing::strip_comments(source.text);
-  for_each_line(code, [&](std::string_view line, int number) {
+  const std::string_view reads = active.empty() ? std::string_view(code) : active;
+  for_each_line(reads, [&](std::string_view line, int number) {
     if (!own_line(number)) return true;
     for (int c = 0; c < 4; ++c) {
       const std::string name = "iChannel" + std::to_string(c);
@@ -710,6 +711,10 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
       warned[static_cast<size_t>(c)] = true;
       warn_at(number, name, unbound_message(name, c));
     }
+    return true;
+  });
+  for_each_line(code, [&](std::string_view line, int number) {
+    if (!own_line(number)) return true;
     // uniform [precision] samplerXX NAME: the code's own sampler, and glslViewer's u_texN.
     std::vector<std::string_view> words;
     lexing::any_word(line, [&](size_t begin, size_t end) {
@@ -731,7 +736,7 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
   if (strays.empty()) return out;
   // A stray sampler warns where it is declared, if any other line reads it.
   std::vector<bool> read(strays.size(), false);
-  for_each_line(code, [&](std::string_view line, int number) {
+  for_each_line(reads, [&](std::string_view line, int number) {
     if (!own_line(number)) return true;
     lexing::any_word(line, [&](size_t begin, size_t end) {
       const auto found = stray_index.find(std::string(line.substr(begin, end - begin)));

@@ -118,6 +118,10 @@ Source preprocess(const fs::path& scene, const SourceOptions& options,
 // the code declares itself, its declaration). Also one per sampler the code
 // declares and reads that no channel binds (glslViewer's u_buffer0, a
 // sampler of its own), at its declaration: the host binds it to no texture.
-Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound);
+// `active`, glslang's preprocessor output of source.text line for line
+// (core/check.h), says which lines read: not an #if branch the compiler
+// drops, and a read through a macro. Empty: every line of the code.
+Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound,
+                                  std::string_view active = {});
 
 }  // namespace rm

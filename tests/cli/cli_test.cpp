@@ -91,6 +91,30 @@ TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
   EXPECT_EQ(r.err, "");
 }
 
+// Only a read the compiler sees warns: not one in an #if branch it drops; a
+// read through a macro does, at the line that uses it. `check` and
+// `render` (the window's path) say the same.
+TEST_F(Cli, OnlyAReadTheCompilerSeesWarnsOfAnUnboundChannel) {
+  write_file(dir_ / "if.frag", "#define TEX iChannel2\nuniform sampler2D myTex;\n"
+                               "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(0.0);\n#ifdef FANCY\n"
+                               "  c = texture(iChannel1, f) + texture(myTex, f);\n#endif\n#if 0\n"
+                               "  c += texture(iChannel0, f);\n#endif\n  c += texture(TEX, f);\n}\n");
+  const std::string scene = (dir_ / "if.frag").string();
+  const std::string unbound = " is read but nothing is bound to it, so it reads transparent black (#pragma channel";
+  const std::string macro = scene + ":11: warning: iChannel2" + unbound + "2 \"FILE\" names an input)\n";
+  for (const std::string& command : {"check " + scene, "render " + scene + " --size 4x4 -o " + (dir_ / "if.png").string()}) {
+    test::Outcome r = run(command);
+    EXPECT_EQ(r.status, 0) << command << '\n' << r.err;
+    EXPECT_EQ(r.err, macro) << command;
+    r = run(command + " -D FANCY");
+    EXPECT_EQ(r.status, 0) << command << '\n' << r.err;
+    EXPECT_EQ(r.err, scene + ":6:15: warning: iChannel1" + unbound + "1 \"FILE\" names an input)\n" + macro + scene +
+                         ":2:19: warning: 'myTex' is read, but the host binds nothing to it, so it reads black (it "
+                         "binds iChannel0-3 and u_tex0-3, to what #pragma channelN \"FILE\" names)\n")
+        << command;
+  }
+}
+
 // A sampler the code declares and reads that no channel binds (glslViewer's
 // buffer passes, which this host does not draw, or a name of its own) is one
 // warning at its declaration, and reads black, not iChannel0's texture, which
