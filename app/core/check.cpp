@@ -402,7 +402,14 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       if (severity && line.number()) {
         if (line.take(" compilation error")) continue;  // the summary
         const auto final_line = line.take(":") ? line.number() : std::nullopt;
-        if (final_line && line.take(": ")) {
+        // "0:12:7: ": the worker gives the column of an unexpected identifier.
+        std::optional<int> given_column;
+        bool located = final_line && line.take(": ");
+        if (final_line && !located && line.take(":")) {
+          given_column = line.number();
+          located = given_column && line.take(": ");
+        }
+        if (located) {
           const std::string message = line.rest();
           if (message == "'' : compilation terminated") continue;  // follows a real error
           // glslang stops reading a required extension it lacks at its name,
@@ -421,7 +428,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           if (missing_endif && after_error) continue;
           // What a file of the user's left open at its end (an #if, a '{',
           // a declaration) is named where it was, not where glslang noticed.
-          const int col = column_in_line(message, source.final_line_text(*final_line));
+          const int col = given_column ? *given_column : column_in_line(message, source.final_line_text(*final_line));
           std::optional<LeftOpen> left_open;
           if (missing_endif) {
             left_open = conditional_left_open(source);

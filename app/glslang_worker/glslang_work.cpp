@@ -4,8 +4,14 @@
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 
+#include <cctype>
+#include <chrono>
+#include <cmath>
 #include <set>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "core/deep_stack.h"
 #include "glslang_worker/sandbox.h"
@@ -28,6 +34,86 @@ std::optional<std::string> preprocessed(const std::string& text, glslang::TShade
   return expanded;
 }
 
+// glslang's info log of `text` parsed as parse_in_child parses it. Call on a
+// big stack.
+std::string parse_log(const std::string& text) {
+  glslang::TShader shader(EShLangFragment);
+  const char* chars = text.c_str();
+  const int length = static_cast<int>(text.size());
+  shader.setStringsWithLengths(&chars, &length, 1);
+  shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+  return shader.getInfoLog();
+}
+
+// The words of one line of code (identifiers, keywords and type names: not
+// numbers, nor words in a comment), as [begin, end) offsets in the line.
+std::vector<std::pair<size_t, size_t>> words_of(std::string_view line) {
+  auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::vector<std::pair<size_t, size_t>> words;
+  for (size_t i = 0; i < line.size();) {
+    if (line.compare(i, 2, "//") == 0) break;
+    if (line.compare(i, 2, "/*") == 0) {
+      const size_t close = line.find("*/", i + 2);
+      if (close == std::string_view::npos) break;
+      i = close + 2;
+    } else if (word_char(line[i])) {
+      const size_t begin = i;
+      const bool number = std::isdigit(static_cast<unsigned char>(line[i]));
+      while (i < line.size() && (word_char(line[i]) || (number && line[i] == '.'))) ++i;
+      if (!number) words.emplace_back(begin, i);
+    } else {
+      ++i;
+    }
+  }
+  return words;
+}
+
+// glslang names the line of an unexpected identifier, not which one it is.
+// Its parser stops at that token whatever follows, so the text cut just
+// after it fails there too, and a text cut before it fails only at its end:
+// a binary search over the line's words, cutting after each, finds it.
+// The 1-based column, or 0 if no cut fails the same way, or if the search
+// would take over a second at `parse_seconds` a parse (a huge text: the
+// line is named all the same). Call on a big stack.
+int unexpected_identifier_column(const std::string& text, int line, const std::string& error, double parse_seconds) {
+  size_t start = 0;
+  for (int n = 1; n < line && start != std::string::npos; ++n) {
+    start = text.find('\n', start);
+    if (start != std::string::npos) ++start;
+  }
+  if (start == std::string::npos) return 0;
+  const size_t end = text.find('\n', start);
+  const auto words = words_of(std::string_view(text).substr(start, end == std::string::npos ? end : end - start));
+  if (parse_seconds * std::ceil(std::log2(words.size() + 1.0)) > 1.0) return 0;
+  auto fails_there = [&](size_t word) {
+    return parse_log(text.substr(0, start + words[word].second)).find(error) != std::string::npos;
+  };
+  size_t low = 0, high = words.size();  // the culprit is the first word whose cut fails there
+  while (low < high) {
+    const size_t middle = (low + high) / 2;
+    if (fails_there(middle)) high = middle;
+    else low = middle + 1;
+  }
+  return low < words.size() ? static_cast<int>(words[low].first) + 1 : 0;
+}
+
+// glslang's log with the column of an unexpected identifier added
+// ("ERROR: 0:12:7: '' :  syntax error, unexpected IDENTIFIER", as glslang
+// places a column where it prints one).
+std::string with_identifier_column(std::string log, const std::string& text, double parse_seconds) {
+  static const std::string kUnexpected = ": '' :  syntax error, unexpected IDENTIFIER";
+  const size_t found = log.find(kUnexpected);
+  const size_t head = log.rfind("ERROR: 0:", found);
+  if (found == std::string::npos || head == std::string::npos) return log;
+  const size_t number = head + 9;
+  if (number >= found || log.find_first_not_of("0123456789", number) != found) return log;
+  const int line = std::stoi(log.substr(number, found - number));
+  const int column =
+      unexpected_identifier_column(text, line, log.substr(head, found + kUnexpected.size() - head), parse_seconds);
+  if (column > 0) log.insert(found, ":" + std::to_string(column));
+  return log;
+}
+
 // The verdict line ("DEPTH LINE CHAIN LINE", from check_tree), then
 // glslang's log and check_tree's; with `active_text`, then a NUL and its
 // preprocessed text (a NUL never comes out of the log).
@@ -41,11 +127,14 @@ std::string parse_in_child(const std::string& source_text, const std::string* ac
     const int length = static_cast<int>(source_text.size());
     shader.setStringsWithLengths(&text, &length, 1);
     // No client API is set: plain GLSL semantics, as the GL driver applies them.
+    const auto start = std::chrono::steady_clock::now();
     const bool parsed = shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+    const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     glslang::TIntermediate* tree = parsed ? shader.getIntermediate() : nullptr;
     const TreeVerdict checked = check_tree(tree ? tree->getTreeRoot() : nullptr);
     verdict = std::to_string(checked.depth) + " " + std::to_string(checked.depth_line) + " " +
-              std::to_string(checked.chain) + " " + std::to_string(checked.chain_line) + "\n" + shader.getInfoLog() +
+              std::to_string(checked.chain) + " " + std::to_string(checked.chain_line) + "\n" +
+              (parsed ? std::string(shader.getInfoLog()) : with_identifier_column(shader.getInfoLog(), source_text, parse_seconds)) +
               checked.log;
     if (active_text) {
       glslang::TShader active(EShLangFragment);

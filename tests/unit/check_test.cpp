@@ -444,6 +444,32 @@ TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
   EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: syntax error, unexpected ';'");
 }
 
+// glslang names no identifier it did not expect: the worker finds which
+// word of the line it is (a struct's name before it is a type, a word in a
+// comment is none, the same name may come twice).
+TEST(Check, AnUnexpectedIdentifierIsPointedAt) {
+  test::TempDir dir;
+  const std::string scene = (dir / "scene.frag").string();
+  const std::pair<std::string, std::string> cases[] = {
+      {"  float a = 1.0, b = 2.0;\n  c = /* a b */ vec4(a b, a, 1.0);\n",
+       ":4:24: error: syntax error, unexpected identifier, expecting ')' or ','"},
+      {"  vec3 col = vec3(0.0)\n  col += 1.0;\n  c = vec4(col, 1.0);\n",
+       ":4:3: error: syntax error, unexpected identifier, expecting ',' or ';'"},
+      {"  Ray r = Ray(vec3(0.0)) x; c = vec4(r.o, 1.0);\n",
+       ":3:26: error: syntax error, unexpected identifier, expecting ',' or ';'"},
+      {"  float d = 1.0; d = d d; c = vec4(d);\n",
+       ":3:24: error: syntax error, unexpected identifier, expecting ',' or ';'"},
+  };
+  for (const auto& [body, expected] : cases) {
+    test::write_file(dir / "scene.frag",
+                     "struct Ray { vec3 o; };\nvoid mainImage(out vec4 c, in vec2 f) {\n" + body + "}\n");
+    Diagnostics diags;
+    check_scene(dir / "scene.frag", {}, &diags);
+    ASSERT_FALSE(diags.empty()) << body;
+    EXPECT_EQ(diags[0].str(), scene + expected) << body;
+  }
+}
+
 // A type error names the types as GLSL writes them, and an assignment's is
 // at its '=' when the line has one.
 TEST(Check, ATypeErrorNamesTheTypesAsGlslDoes) {
