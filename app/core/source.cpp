@@ -680,9 +680,19 @@ std::string stray_sampler_message(const std::string& name) {
 
 Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound, std::string_view active) {
   Diagnostics out;
-  auto warn_at = [&](int number, const std::string& name, std::string message) {
+  // `expanded`: the line as the preprocessor gave it, where `name` is read.
+  // A read through a macro is placed at the macro: the first word of the
+  // line that the expansion replaced.
+  auto warn_at = [&](int number, const std::string& name, std::string message, std::string_view expanded = {}) {
     auto [path, at_line] = source.locate(number);
-    const std::optional<size_t> column = lexing::find_word(source.final_line_text(number), name);
+    const std::string line = source.final_line_text(number);
+    std::optional<size_t> column = lexing::find_word(line, name);
+    if (!column && !expanded.empty())
+      lexing::any_word(line, [&](size_t begin, size_t end) {
+        if (lexing::has_word(expanded, std::string_view(line).substr(begin, end - begin))) return false;
+        column = begin;
+        return true;
+      });
     Diagnostic d;
     d.severity = Severity::Warning;
     d.path = path;
@@ -709,7 +719,7 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
       const std::string name = "iChannel" + std::to_string(c);
       if (warned[static_cast<size_t>(c)] || !lexing::has_word(line, name)) continue;
       warned[static_cast<size_t>(c)] = true;
-      warn_at(number, name, unbound_message(name, c));
+      warn_at(number, name, unbound_message(name, c), line);
     }
     return true;
   });

@@ -101,7 +101,7 @@ TEST_F(Cli, OnlyAReadTheCompilerSeesWarnsOfAnUnboundChannel) {
                                "  c += texture(iChannel0, f);\n#endif\n  c += texture(TEX, f);\n}\n");
   const std::string scene = (dir_ / "if.frag").string();
   const std::string unbound = " is read but nothing is bound to it, so it reads transparent black (#pragma channel";
-  const std::string macro = scene + ":11: warning: iChannel2" + unbound + "2 \"FILE\" names an input)\n";
+  const std::string macro = scene + ":11:16: warning: iChannel2" + unbound + "2 \"FILE\" names an input)\n";
   for (const std::string& command : {"check " + scene, "render " + scene + " --size 4x4 -o " + (dir_ / "if.png").string()}) {
     test::Outcome r = run(command);
     EXPECT_EQ(r.status, 0) << command << '\n' << r.err;
@@ -639,7 +639,7 @@ TEST_F(Cli, BadShaderFilesGetOneClearLine) {
   write_file(dir_ / "corrupt.png", "this is not a PNG");
   // A PNG with its pixels cut off, a JPEG within its header: libpng printed
   // a line of its own, and OIIO's message was three lines (JPEG's two).
-  for (const std::string& name : {"cut.png", "cut.jpg"}) {
+  for (const std::string name : {"cut.png", "cut.jpg"}) {
     std::vector<unsigned char> noise(64 * 64 * 3);
     for (size_t i = 0; i < noise.size(); ++i) noise[i] = static_cast<unsigned char>((i * 2654435761u) >> 13);
     auto image = OIIO::ImageOutput::create(name);
