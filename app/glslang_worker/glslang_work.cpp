@@ -45,37 +45,45 @@ std::string parse_log(const std::string& text) {
   return shader.getInfoLog();
 }
 
-// The words of one line of code (identifiers, keywords and type names: not
-// numbers, nor words in a comment), as [begin, end) offsets in the line.
-std::vector<std::pair<size_t, size_t>> words_of(std::string_view line) {
+// The names and numbers of one line of code (identifiers, keywords, type
+// names, literals; not those in a comment), as [begin, end) offsets.
+std::vector<std::pair<size_t, size_t>> names_and_numbers(std::string_view line) {
   auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-  std::vector<std::pair<size_t, size_t>> words;
+  auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  std::vector<std::pair<size_t, size_t>> tokens;
   for (size_t i = 0; i < line.size();) {
     if (line.compare(i, 2, "//") == 0) break;
     if (line.compare(i, 2, "/*") == 0) {
       const size_t close = line.find("*/", i + 2);
       if (close == std::string_view::npos) break;
       i = close + 2;
-    } else if (word_char(line[i])) {
-      const size_t begin = i;
-      const bool number = std::isdigit(static_cast<unsigned char>(line[i]));
-      while (i < line.size() && (word_char(line[i]) || (number && line[i] == '.'))) ++i;
-      if (!number) words.emplace_back(begin, i);
-    } else {
-      ++i;
+      continue;
     }
+    const bool number = digit(line[i]) || (line[i] == '.' && i + 1 < line.size() && digit(line[i + 1]));
+    if (!number && !word_char(line[i])) {
+      ++i;
+      continue;
+    }
+    const size_t begin = i;
+    const bool hex = number && (line.compare(i, 2, "0x") == 0 || line.compare(i, 2, "0X") == 0);
+    for (++i; i < line.size(); ++i) {
+      const char c = line[i];
+      const bool exponent_sign = number && !hex && (c == '+' || c == '-') && (line[i - 1] == 'e' || line[i - 1] == 'E');
+      if (!word_char(c) && !(number && c == '.') && !exponent_sign) break;
+    }
+    tokens.emplace_back(begin, i);
   }
-  return words;
+  return tokens;
 }
 
-// glslang names the line of an unexpected identifier, not which one it is.
-// Its parser stops at that token whatever follows, so the text cut just
+// glslang names the line of an unexpected name or number, not which one it
+// is. Its parser stops at that token whatever follows, so the text cut just
 // after it fails there too, and a text cut before it fails only at its end:
-// a binary search over the line's words, cutting after each, finds it.
-// The 1-based column, or 0 if no cut fails the same way, or if the search
-// would take over a second at `parse_seconds` a parse (a huge text: the
-// line is named all the same). Call on a big stack.
-int unexpected_identifier_column(const std::string& text, int line, const std::string& error, double parse_seconds) {
+// a binary search over the line's names and numbers, cutting after each,
+// finds it. The 1-based column, or 0 if no cut fails the same way, or if the
+// search would take over a second at `parse_seconds` a parse (a huge text:
+// the line is named all the same). Call on a big stack.
+int unexpected_token_column(const std::string& text, int line, const std::string& error, double parse_seconds) {
   size_t start = 0;
   for (int n = 1; n < line && start != std::string::npos; ++n) {
     start = text.find('\n', start);
@@ -83,33 +91,41 @@ int unexpected_identifier_column(const std::string& text, int line, const std::s
   }
   if (start == std::string::npos) return 0;
   const size_t end = text.find('\n', start);
-  const auto words = words_of(std::string_view(text).substr(start, end == std::string::npos ? end : end - start));
-  if (parse_seconds * std::ceil(std::log2(words.size() + 1.0)) > 1.0) return 0;
-  auto fails_there = [&](size_t word) {
-    return parse_log(text.substr(0, start + words[word].second)).find(error) != std::string::npos;
+  const auto tokens =
+      names_and_numbers(std::string_view(text).substr(start, end == std::string::npos ? end : end - start));
+  if (parse_seconds * std::ceil(std::log2(tokens.size() + 1.0)) > 1.0) return 0;
+  auto fails_there = [&](size_t token) {
+    return parse_log(text.substr(0, start + tokens[token].second)).find(error) != std::string::npos;
   };
-  size_t low = 0, high = words.size();  // the culprit is the first word whose cut fails there
+  size_t low = 0, high = tokens.size();  // the culprit is the first token whose cut fails there
   while (low < high) {
     const size_t middle = (low + high) / 2;
     if (fails_there(middle)) high = middle;
     else low = middle + 1;
   }
-  return low < words.size() ? static_cast<int>(words[low].first) + 1 : 0;
+  return low < tokens.size() ? static_cast<int>(tokens[low].first) + 1 : 0;
 }
 
-// glslang's log with the column of an unexpected identifier added
+// glslang's log with the column of an unexpected name or number added
 // ("ERROR: 0:12:7: '' :  syntax error, unexpected IDENTIFIER", as glslang
-// places a column where it prints one).
-std::string with_identifier_column(std::string log, const std::string& text, double parse_seconds) {
-  static const std::string kUnexpected = ": '' :  syntax error, unexpected IDENTIFIER";
+// places a column where it prints one). The host finds a keyword's or a
+// sign's column itself, by its spelling (core/glslang_words.h).
+std::string with_unexpected_column(std::string log, const std::string& text, double parse_seconds) {
+  static const std::string kUnexpected = ": '' :  syntax error, unexpected ";
+  static const std::set<std::string, std::less<>> kNamesAndNumbers = {
+      "IDENTIFIER",     "TYPE_NAME",      "FLOATCONSTANT",   "DOUBLECONSTANT", "INTCONSTANT",   "UINTCONSTANT",
+      "INT64CONSTANT",  "UINT64CONSTANT", "FLOAT16CONSTANT", "INT16CONSTANT",  "UINT16CONSTANT"};
   const size_t found = log.find(kUnexpected);
+  if (found == std::string::npos) return log;
   const size_t head = log.rfind("ERROR: 0:", found);
-  if (found == std::string::npos || head == std::string::npos) return log;
+  const size_t name = found + kUnexpected.size();
+  const size_t name_end = log.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_", name);
+  if (head == std::string::npos || !kNamesAndNumbers.count(std::string_view(log).substr(name, name_end - name)))
+    return log;
   const size_t number = head + 9;
   if (number >= found || log.find_first_not_of("0123456789", number) != found) return log;
   const int line = std::stoi(log.substr(number, found - number));
-  const int column =
-      unexpected_identifier_column(text, line, log.substr(head, found + kUnexpected.size() - head), parse_seconds);
+  const int column = unexpected_token_column(text, line, log.substr(head, name_end - head), parse_seconds);
   if (column > 0) log.insert(found, ":" + std::to_string(column));
   return log;
 }
@@ -134,7 +150,7 @@ std::string parse_in_child(const std::string& source_text, const std::string* ac
     const TreeVerdict checked = check_tree(tree ? tree->getTreeRoot() : nullptr);
     verdict = std::to_string(checked.depth) + " " + std::to_string(checked.depth_line) + " " +
               std::to_string(checked.chain) + " " + std::to_string(checked.chain_line) + "\n" +
-              (parsed ? std::string(shader.getInfoLog()) : with_identifier_column(shader.getInfoLog(), source_text, parse_seconds)) +
+              (parsed ? std::string(shader.getInfoLog()) : with_unexpected_column(shader.getInfoLog(), source_text, parse_seconds)) +
               checked.log;
     if (active_text) {
       glslang::TShader active(EShLangFragment);

@@ -444,10 +444,10 @@ TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
   EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: syntax error, unexpected ';'");
 }
 
-// glslang names no identifier it did not expect: the worker finds which
-// word of the line it is (a struct's name before it is a type, a word in a
-// comment is none, the same name may come twice).
-TEST(Check, AnUnexpectedIdentifierIsPointedAt) {
+// glslang names no identifier, type name or number it did not expect: the
+// worker finds which of the line's it is (a struct's name before it is a
+// type, a word in a comment is none, the same name may come twice).
+TEST(Check, AnUnexpectedNameOrNumberIsPointedAt) {
   test::TempDir dir;
   const std::string scene = (dir / "scene.frag").string();
   const std::pair<std::string, std::string> cases[] = {
@@ -459,6 +459,11 @@ TEST(Check, AnUnexpectedIdentifierIsPointedAt) {
        ":3:26: error: syntax error, unexpected identifier, expecting ',' or ';'"},
       {"  float d = 1.0; d = d d; c = vec4(d);\n",
        ":3:24: error: syntax error, unexpected identifier, expecting ',' or ';'"},
+      // A struct's name, and numbers, the same way.
+      {"  float a = 1.0\n  Ray r = Ray(vec3(a)); c = vec4(r.o, 1.0);\n",
+       ":4:3: error: syntax error, unexpected type name, expecting ',' or ';'"},
+      {"  c = vec4(1.0, 1e-3 .5, 1.0);\n", ":3:22: error: syntax error, unexpected float constant, expecting ')' or ','"},
+      {"  c = vec4(1.0, 2.0 1, 1.0);\n", ":3:21: error: syntax error, unexpected int constant, expecting ')' or ','"},
   };
   for (const auto& [body, expected] : cases) {
     test::write_file(dir / "scene.frag",
