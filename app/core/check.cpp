@@ -402,7 +402,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       if (severity && line.number()) {
         if (line.take(" compilation error")) continue;  // the summary
         const auto final_line = line.take(":") ? line.number() : std::nullopt;
-        // "0:12:7: ": the worker gives the column of an unexpected identifier.
+        // "0:12:7: ": the worker gives the column of an unexpected name or number.
         std::optional<int> given_column;
         bool located = final_line && line.take(": ");
         if (final_line && !located && line.take(":")) {
