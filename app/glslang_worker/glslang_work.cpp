@@ -4,7 +4,6 @@
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "core/deep_stack.h"
+#include "core/lexing.h"
 #include "glslang_worker/sandbox.h"
 #include "glslang_worker/tree_checks.h"
 
@@ -34,22 +34,27 @@ std::optional<std::string> preprocessed(const std::string& text, glslang::TShade
   return expanded;
 }
 
-// glslang's info log of `text` parsed as parse_in_child parses it. Call on a
-// big stack.
-std::string parse_log(const std::string& text) {
-  glslang::TShader shader(EShLangFragment);
+// glslang's parser and semantic checks over `text`, as every validation
+// runs them: no client API is set, so plain GLSL semantics, as the GL
+// driver applies them. Call on a big stack.
+bool parse(const std::string& text, glslang::TShader* shader) {
   const char* chars = text.c_str();
   const int length = static_cast<int>(text.size());
-  shader.setStringsWithLengths(&chars, &length, 1);
-  shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+  shader->setStringsWithLengths(&chars, &length, 1);
+  return shader->parse(GetDefaultResources(), 100, false, EShMsgDefault);
+}
+
+// glslang's log of `text`. Call on a big stack.
+std::string parse_log(const std::string& text) {
+  glslang::TShader shader(EShLangFragment);
+  parse(text, &shader);
   return shader.getInfoLog();
 }
 
 // The names and numbers of one line of code (identifiers, keywords, type
 // names, literals; not those in a comment), as [begin, end) offsets.
 std::vector<std::pair<size_t, size_t>> names_and_numbers(std::string_view line) {
-  auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-  auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  using lexing::is_digit, lexing::is_word_char;
   std::vector<std::pair<size_t, size_t>> tokens;
   for (size_t i = 0; i < line.size();) {
     if (line.compare(i, 2, "//") == 0) break;
@@ -59,8 +64,8 @@ std::vector<std::pair<size_t, size_t>> names_and_numbers(std::string_view line) 
       i = close + 2;
       continue;
     }
-    const bool number = digit(line[i]) || (line[i] == '.' && i + 1 < line.size() && digit(line[i + 1]));
-    if (!number && !word_char(line[i])) {
+    const bool number = is_digit(line[i]) || (line[i] == '.' && i + 1 < line.size() && is_digit(line[i + 1]));
+    if (!number && !is_word_char(line[i])) {
       ++i;
       continue;
     }
@@ -69,7 +74,7 @@ std::vector<std::pair<size_t, size_t>> names_and_numbers(std::string_view line) 
     for (++i; i < line.size(); ++i) {
       const char c = line[i];
       const bool exponent_sign = number && !hex && (c == '+' || c == '-') && (line[i - 1] == 'e' || line[i - 1] == 'E');
-      if (!word_char(c) && !(number && c == '.') && !exponent_sign) break;
+      if (!is_word_char(c) && !(number && c == '.') && !exponent_sign) break;
     }
     tokens.emplace_back(begin, i);
   }
@@ -139,18 +144,15 @@ std::string parse_in_child(const std::string& source_text, const std::string* ac
   // sum (60 KB of text) overflows an 8 MiB stack.
   run_with_deep_stack([&] {
     glslang::TShader shader(EShLangFragment);
-    const char* text = source_text.c_str();
-    const int length = static_cast<int>(source_text.size());
-    shader.setStringsWithLengths(&text, &length, 1);
-    // No client API is set: plain GLSL semantics, as the GL driver applies them.
     const auto start = std::chrono::steady_clock::now();
-    const bool parsed = shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+    const bool parsed = parse(source_text, &shader);
     const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     glslang::TIntermediate* tree = parsed ? shader.getIntermediate() : nullptr;
     const TreeVerdict checked = check_tree(tree ? tree->getTreeRoot() : nullptr);
     verdict = std::to_string(checked.depth) + " " + std::to_string(checked.depth_line) + " " +
               std::to_string(checked.chain) + " " + std::to_string(checked.chain_line) + "\n" +
-              (parsed ? std::string(shader.getInfoLog()) : with_unexpected_column(shader.getInfoLog(), source_text, parse_seconds)) +
+              (parsed ? std::string(shader.getInfoLog())
+                      : with_unexpected_column(shader.getInfoLog(), source_text, parse_seconds)) +
               checked.log;
     if (active_text) {
       glslang::TShader active(EShLangFragment);
@@ -168,10 +170,7 @@ void build_builtins_for(const std::string& version_line) {
   static std::set<std::string> built;
   if (version_line.empty() || !built.insert(version_line).second) return;
   glslang::TShader shader(EShLangFragment);
-  const std::string text = version_line + "\nvoid main() {}\n";
-  const char* chars = text.c_str();
-  shader.setStrings(&chars, 1);
-  shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+  parse(version_line + "\nvoid main() {}\n", &shader);
 }
 
 }  // namespace
