@@ -82,18 +82,18 @@ def session(binary, scene, budget_on, work):
 
 def main():
     binary, csv_dir, scenes = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3:]
-    work = tempfile.mkdtemp(prefix="rm-budget-")
     rows, traces = [], {}
-    for scene in scenes:
-        for budget_on in (True, False):
-            r = session(binary, os.path.abspath(scene), budget_on, work)
-            if not r:
-                print(f"{scene}: no window", file=sys.stderr)
-                continue
-            r["budget_on"] = budget_on
-            rows.append(r)
-            traces[(r["name"], budget_on)] = r["trace"]
-            print(f"{r['name']} {'on' if budget_on else 'off'}: {len(r['intervals'])} intervals", file=sys.stderr)
+    with tempfile.TemporaryDirectory(prefix="rm-budget-") as work:
+        for scene in scenes:
+            for budget_on in (True, False):
+                r = session(binary, os.path.abspath(scene), budget_on, work)
+                if not r:
+                    print(f"{scene}: no window", file=sys.stderr)
+                    continue
+                r["budget_on"] = budget_on
+                rows.append(r)
+                traces[(r["name"], budget_on)] = r["trace"]
+                print(f"{r['name']} {'on' if budget_on else 'off'}: {len(r['intervals'])} intervals", file=sys.stderr)
 
     def ms(s):
         return "—" if s is None else f"{s * 1000:.0f}"

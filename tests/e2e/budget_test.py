@@ -38,9 +38,9 @@ import re
 import shlex
 import subprocess
 import sys
-import tempfile
 import time
 
+import harness
 from harness import (capture_screen, check, first_frame_window, matches_render, mean_colour, metadata, open_window,
                      pixels_over, save_by_rename, summary, take_screenshot, wait_for, xdotool)
 
@@ -778,7 +778,7 @@ def refined_still(work):
 
 
 if __name__ == "__main__":
-    work = tempfile.mkdtemp(prefix="rm-e2e-budget-")
+    work = harness.work_dir("rm-e2e-budget-")
     try:
         heavy_session(work)
         heavy_session(work, "--target-fps", "0")

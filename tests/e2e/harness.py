@@ -3,10 +3,13 @@ xdotool, saving like an editor, and reading back screenshots."""
 import os
 import re
 import shlex
+import shutil
 import subprocess
+import tempfile
 import time
 
 passed, failed = 0, 0
+work_dirs = []
 
 
 def check(name, ok, detail=""):
@@ -19,10 +22,27 @@ def check(name, ok, detail=""):
         print(f"FAIL {name} {detail}", flush=True)
 
 
+def work_dir(prefix):
+    """A new folder for a test's files, in the system's temporary folder.
+    summary() removes it if every check passed, and keeps it, naming it, if
+    one failed: its logs and pictures are what a failure is read from."""
+    path = tempfile.mkdtemp(prefix=prefix)
+    work_dirs.append(path)
+    return path
+
+
 def summary():
-    """Prints the totals; returns the exit status for the test."""
+    """Prints the totals and removes or names the work folders; returns the
+    exit status for the test."""
     print(f"{passed} passed, {failed} failed")
-    return 1 if failed or not passed else 0
+    status = 1 if failed or not passed else 0
+    for path in work_dirs:
+        if status:
+            print(f"kept for inspection: {path}")
+        else:
+            # A window the test killed may still be closing its files there.
+            shutil.rmtree(path, ignore_errors=True)
+    return status
 
 
 def wait_for(predicate, timeout=20.0, step=0.05):

@@ -31,9 +31,9 @@ import re
 import shutil
 import subprocess
 import sys
-import tempfile
 import time
 
+import harness
 from harness import (check, cpu_seconds, mean_colour, save_by_rename, save_in_place, screenshots, summary,
                      take_screenshot, wait_for, xdotool)
 
@@ -364,7 +364,7 @@ def main():
     args = parser.parse_args()
     if args.reloads < 40:
         parser.error("--reloads needs at least 40: the program cache (8) must fill before counting")
-    work = tempfile.mkdtemp(prefix="rm-session-")
+    work = harness.work_dir("rm-session-")
     wm = start_window_manager(work)
     s = Session(os.path.abspath(args.binary), work, solid((1, 2, 3), "first"))
     try:

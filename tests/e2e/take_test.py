@@ -20,9 +20,9 @@ import re
 import shutil
 import subprocess
 import sys
-import tempfile
 import time
 
+import harness
 from harness import (check, first_frame_window, mean_colour, metadata, open_window, pixels_over, save_by_rename, summary,
                      take_screenshot, wait_for, xdotool)
 
@@ -51,7 +51,7 @@ def render(*args):
 
 
 def main():
-    work = tempfile.mkdtemp(prefix="rm-take-")
+    work = harness.work_dir("rm-take-")
     scene = os.path.join(work, "take.frag")
     with open(scene, "w") as f:
         f.write(SCENE)

@@ -35,7 +35,6 @@ import re
 import shlex
 import subprocess
 import sys
-import tempfile
 import time
 
 import harness
@@ -75,7 +74,7 @@ def matches_render(shot, scene_file, workdir, fail_percent=0):
 
 
 def main():
-    work = tempfile.mkdtemp(prefix="rm-e2e-")
+    work = harness.work_dir("rm-e2e-")
     scene = os.path.join(work, "scene.frag")
     with open(scene, "w") as f:
         f.write(SCENE_V1)
@@ -199,7 +198,7 @@ def main():
 
 def scene_default_channel():
     """A scene's `#pragma channel0 "FILE"` fills iChannel0 in the window."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-channel-")
+    work = harness.work_dir("rm-e2e-channel-")
     subprocess.run(["oiiotool", "--pattern", "constant:color=0.2,0.6,0.4", "4x4", "3", "-d", "uint8",
                     "-o", os.path.join(work, "tex.png")], check=True)
     scene = os.path.join(work, "textured.frag")
@@ -253,7 +252,7 @@ def project_session():
     buffer that feeds itself, a key reaches the shader through the keyboard
     texture, and a number edit of one buffer is a tweak of only it, then a
     rebuild of only it, and the paint stays."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-project-")
+    work = harness.work_dir("rm-e2e-project-")
     for name, text in (("buffer_a.frag", PAINT_A), ("buffer_b.frag", CONSTANT_B), ("image.frag", SHOW_AB)):
         with open(os.path.join(work, name), "w") as f:
             f.write(text)
@@ -313,7 +312,7 @@ def json_session():
     """A Shadertoy JSON saved half-written opens the window as a broken shader
     does: its error at the JSON's line and column, the window open and
     waiting. The save that mends it shows, with its warning said once."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-json-")
+    work = harness.work_dir("rm-e2e-json-")
     json = os.path.join(work, "p.json")
     with open(json, "w") as f:
         f.write(JSON_PROJECT[:60])
@@ -355,7 +354,7 @@ GAIN_SLIDER = (PANEL_X + 8, PANEL_X + 172, 161)  # left end, right end, y
 
 
 def interface_session():
-    work = tempfile.mkdtemp(prefix="rm-e2e-ui-")
+    work = harness.work_dir("rm-e2e-ui-")
     scene = os.path.join(work, "ui.frag")
     with open(scene, "w") as f:
         f.write(UI_SCENE.format(n=1))
@@ -459,7 +458,7 @@ def find_pixels(ppm, region, test):
 def warning_session():
     """A warning that does not block (an unbound channel) shows over the
     running picture in a smaller line, and `dismiss` takes it away."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-warn-")
+    work = harness.work_dir("rm-e2e-warn-")
     scene = os.path.join(work, "warn.frag")
     with open(scene, "w") as f:
         f.write(WARNING_SCENE)
@@ -499,7 +498,7 @@ HIT_PIXELS_SLIDER = (KNOB_SIZE[0] - 10 - 330 + 12, 316 - 2 * 23)  # two rows up;
 def knob_session():
     """A knob moved in the panel rebuilds the scene with its -D, and F12
     records it, so that `render` of the shot's command line matches."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-knob-")
+    work = harness.work_dir("rm-e2e-knob-")
     tori = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../examples/tori.frag")
     err_path, out_path = os.path.join(work, "stderr.txt"), os.path.join(work, "stdout.txt")
     proc = open_window([BINARY, tori, "--size", f"{KNOB_SIZE[0]}x{KNOB_SIZE[1]}", "--controls", "--shot-dir", work,
@@ -590,7 +589,7 @@ DRAGGABLE = STATIC.replace("fract(v)", "fract(v + iMouse.x)")
 def idle_session(source, name, action=None, marker="presented generation 1"):
     """Opens `source`, lets it settle, measures CPU time over 4 s (after
     `action`, if any), drags the mouse, quits. Returns (cpu s, frames drawn)."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-idle-")
+    work = harness.work_dir("rm-e2e-idle-")
     scene = os.path.join(work, name)
     with open(scene, "w") as f:
         f.write(source)
@@ -659,7 +658,7 @@ def small_window(source, name, env=None):
     window with -v (and the environment `env`), shots going there: (work,
     scene, stderr path, stdout path, process, window); window None (and a
     failed check) when none came."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-small-")
+    work = harness.work_dir("rm-e2e-small-")
     scene = os.path.join(work, name)
     with open(scene, "w") as f:
         f.write(source)
@@ -777,7 +776,7 @@ def shot_over_the_largest_picture():
     """F12 at a --shot-scale that makes the shot more than 16384 pixels a side
     (1100 x 16 = 17600): one line says so, nothing is written, and the window
     goes on. It used to throw std::bad_alloc where memory ran short first."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-shot-")
+    work = harness.work_dir("rm-e2e-shot-")
     scene = os.path.join(work, "still.frag")
     with open(scene, "w") as f:
         f.write(STILL)
@@ -810,7 +809,7 @@ def controls_of_any_range():
     asserts past half of it, and the open panel aborted the window (status
     134) at its first frame. It opens, takes a drag on each control, and
     quits with status 0."""
-    work = tempfile.mkdtemp(prefix="rm-e2e-ranges-")
+    work = harness.work_dir("rm-e2e-ranges-")
     scene = os.path.join(work, "ranges.frag")
     with open(scene, "w") as f:
         f.write(WIDE_RANGES)
