@@ -68,8 +68,9 @@ std::optional<size_t> sole_assignment(std::string_view line) {
   return found;
 }
 
-// glslang names no column. Where its message quotes a token, or names the
-// unexpected one, find that token on the line.
+// glslang names no column (the worker adds one for an unexpected token
+// where its search is quick enough). Where the message quotes a token, or
+// names the unexpected one, find that token's first spelling on the line.
 int column_in_line(const std::string& message, const std::string& line_text) {
   std::string needle;
   const size_t unexpected = message.find("unexpected ");
@@ -402,7 +403,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       if (severity && line.number()) {
         if (line.take(" compilation error")) continue;  // the summary
         const auto final_line = line.take(":") ? line.number() : std::nullopt;
-        // "0:12:7: ": the worker gives the column of an unexpected name or number.
+        // "0:12:7: ": the worker gives the column of an unexpected token.
         std::optional<int> given_column;
         bool located = final_line && line.take(": ");
         if (final_line && !located && line.take(":")) {

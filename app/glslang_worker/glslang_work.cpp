@@ -4,8 +4,10 @@
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <set>
 #include <string>
 #include <string_view>
@@ -51,10 +53,15 @@ std::string parse_log(const std::string& text) {
   return shader.getInfoLog();
 }
 
-// The names and numbers of one line of code (identifiers, keywords, type
-// names, literals; not those in a comment), as [begin, end) offsets.
-std::vector<std::pair<size_t, size_t>> names_and_numbers(std::string_view line) {
-  using lexing::is_digit, lexing::is_word_char;
+// GLSL's operators of more than one character, longest first: a line's
+// signs are read as the compiler reads them, the longest that fits.
+constexpr std::string_view kLongSigns[] = {"<<=", ">>=", "<<", ">>", "++", "--", "<=", ">=", "==", "!=",
+                                           "&&",  "||",  "^^", "*=", "/=", "+=", "%=", "-=", "&=", "^=", "|="};
+
+// The tokens of one line of code (names, keywords, type names, literals and
+// signs; not those in a comment), as [begin, end) offsets.
+std::vector<std::pair<size_t, size_t>> line_tokens(std::string_view line) {
+  using lexing::is_blank, lexing::is_digit, lexing::is_word_char;
   std::vector<std::pair<size_t, size_t>> tokens;
   for (size_t i = 0; i < line.size();) {
     if (line.compare(i, 2, "//") == 0) break;
@@ -64,30 +71,39 @@ std::vector<std::pair<size_t, size_t>> names_and_numbers(std::string_view line) 
       i = close + 2;
       continue;
     }
-    const bool number = is_digit(line[i]) || (line[i] == '.' && i + 1 < line.size() && is_digit(line[i + 1]));
-    if (!number && !is_word_char(line[i])) {
+    if (is_blank(line[i])) {
       ++i;
       continue;
     }
     const size_t begin = i;
-    const bool hex = number && (line.compare(i, 2, "0x") == 0 || line.compare(i, 2, "0X") == 0);
-    for (++i; i < line.size(); ++i) {
-      const char c = line[i];
-      const bool exponent_sign = number && !hex && (c == '+' || c == '-') && (line[i - 1] == 'e' || line[i - 1] == 'E');
-      if (!is_word_char(c) && !(number && c == '.') && !exponent_sign) break;
+    const bool number = is_digit(line[i]) || (line[i] == '.' && i + 1 < line.size() && is_digit(line[i + 1]));
+    if (number || is_word_char(line[i])) {
+      const bool hex = number && (line.compare(i, 2, "0x") == 0 || line.compare(i, 2, "0X") == 0);
+      for (++i; i < line.size(); ++i) {
+        const char c = line[i];
+        const bool exponent_sign =
+            number && !hex && (c == '+' || c == '-') && (line[i - 1] == 'e' || line[i - 1] == 'E');
+        if (!is_word_char(c) && !(number && c == '.') && !exponent_sign) break;
+      }
+    } else {
+      const auto sign = std::find_if(std::begin(kLongSigns), std::end(kLongSigns),
+                                     [&](std::string_view s) { return line.compare(i, s.size(), s) == 0; });
+      i += sign == std::end(kLongSigns) ? 1 : sign->size();
     }
     tokens.emplace_back(begin, i);
   }
   return tokens;
 }
 
-// glslang names the line of an unexpected name or number, not which one it
-// is. Its parser stops at that token whatever follows, so the text cut just
-// after it fails there too, and a text cut before it fails only at its end:
-// a binary search over the line's names and numbers, cutting after each,
-// finds it. The 1-based column, or 0 if no cut fails the same way, or if the
-// search would take over a second at `parse_seconds` a parse (a huge text:
-// the line is named all the same). Call on a big stack.
+// glslang names the line of an unexpected token, not which one it is. Its
+// parser stops at that token whatever follows, so the text cut just after it
+// fails there too, and a text cut before it fails only at its end: a binary
+// search over the line's tokens, cutting after each, finds it. Each cut ends
+// with a newline: glslang parses a few tokens of its own after the text, and
+// they must fail on the next line, not as an unexpected ';' on this one.
+// The 1-based column, or 0 if no cut fails the same way, or if the search
+// would take over a second at `parse_seconds` a parse (a huge text: the
+// line is named all the same). Call on a big stack.
 int unexpected_token_column(const std::string& text, int line, const std::string& error, double parse_seconds) {
   size_t start = 0;
   for (int n = 1; n < line && start != std::string::npos; ++n) {
@@ -97,10 +113,10 @@ int unexpected_token_column(const std::string& text, int line, const std::string
   if (start == std::string::npos) return 0;
   const size_t end = text.find('\n', start);
   const auto tokens =
-      names_and_numbers(std::string_view(text).substr(start, end == std::string::npos ? end : end - start));
+      line_tokens(std::string_view(text).substr(start, end == std::string::npos ? end : end - start));
   if (parse_seconds * std::ceil(std::log2(tokens.size() + 1.0)) > 1.0) return 0;
   auto fails_there = [&](size_t token) {
-    return parse_log(text.substr(0, start + tokens[token].second)).find(error) != std::string::npos;
+    return parse_log(text.substr(0, start + tokens[token].second) + "\n").find(error) != std::string::npos;
   };
   size_t low = 0, high = tokens.size();  // the culprit is the first token whose cut fails there
   while (low < high) {
@@ -111,22 +127,18 @@ int unexpected_token_column(const std::string& text, int line, const std::string
   return low < tokens.size() ? static_cast<int>(tokens[low].first) + 1 : 0;
 }
 
-// glslang's log with the column of an unexpected name or number added
-// ("ERROR: 0:12:7: '' :  syntax error, unexpected IDENTIFIER", as glslang
-// places a column where it prints one). The host finds a keyword's or a
-// sign's column itself, by its spelling (core/glslang_words.h).
+// glslang's log with the column of an unexpected token added ("ERROR:
+// 0:12:7: '' :  syntax error, unexpected IDENTIFIER", as glslang places a
+// column where it prints one). Without one (the search was too slow), the
+// host finds the column by the token's spelling (core/glslang_words.h).
 std::string with_unexpected_column(std::string log, const std::string& text, double parse_seconds) {
   static const std::string kUnexpected = ": '' :  syntax error, unexpected ";
-  static const std::set<std::string, std::less<>> kNamesAndNumbers = {
-      "IDENTIFIER",     "TYPE_NAME",      "FLOATCONSTANT",   "DOUBLECONSTANT", "INTCONSTANT",   "UINTCONSTANT",
-      "INT64CONSTANT",  "UINT64CONSTANT", "FLOAT16CONSTANT", "INT16CONSTANT",  "UINT16CONSTANT"};
   const size_t found = log.find(kUnexpected);
   if (found == std::string::npos) return log;
   const size_t head = log.rfind("ERROR: 0:", found);
   const size_t name = found + kUnexpected.size();
   const size_t name_end = log.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_", name);
-  if (head == std::string::npos || !kNamesAndNumbers.count(std::string_view(log).substr(name, name_end - name)))
-    return log;
+  if (head == std::string::npos || name_end == name) return log;  // "unexpected $end": no token to point at
   const size_t number = head + 9;
   if (number >= found || log.find_first_not_of("0123456789", number) != found) return log;
   const int line = std::stoi(log.substr(number, found - number));

@@ -444,10 +444,10 @@ TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
   EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: syntax error, unexpected ';'");
 }
 
-// glslang names no identifier, type name or number it did not expect: the
+// glslang names the line of a token it did not expect, not the token: the
 // worker finds which of the line's it is (a struct's name before it is a
-// type, a word in a comment is none, the same name may come twice).
-TEST(Check, AnUnexpectedNameOrNumberIsPointedAt) {
+// type, a word in a comment is none, the same name or sign may come twice).
+TEST(Check, AnUnexpectedTokenIsPointedAt) {
   test::TempDir dir;
   const std::string scene = (dir / "scene.frag").string();
   const std::pair<std::string, std::string> cases[] = {
@@ -464,6 +464,11 @@ TEST(Check, AnUnexpectedNameOrNumberIsPointedAt) {
        ":4:3: error: syntax error, unexpected type name, expecting ',' or ';'"},
       {"  c = vec4(1.0, 1e-3 .5, 1.0);\n", ":3:22: error: syntax error, unexpected float constant, expecting ')' or ','"},
       {"  c = vec4(1.0, 2.0 1, 1.0);\n", ":3:21: error: syntax error, unexpected int constant, expecting ')' or ','"},
+      // Signs and keywords: not their first spelling on the line, nor one in a comment.
+      {"  c = vec4(1.0)); // )\n", ":3:16: error: syntax error, unexpected ')', expecting ',' or ';'"},
+      {"  float a = 1.0; a += 2.0; a = = 3.0; c = vec4(a);\n", ":3:32: error: syntax error, unexpected '='"},
+      {"  int i = 1; i <<= 1; i <<= <<= 2; c = vec4(i);\n", ":3:29: error: syntax error, unexpected '<<='"},
+      {"  c = vec4(1.0); if (c.x > 0.0) return; return return;\n", ":3:48: error: syntax error, unexpected 'return'"},
   };
   for (const auto& [body, expected] : cases) {
     test::write_file(dir / "scene.frag",
