@@ -87,31 +87,28 @@ bool has_call(std::string_view text, std::string_view name, std::string_view aft
 }
 
 std::string strip_comments(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (size_t i = 0; i < text.size(); ++i) {
+  std::string out(text);
+  for (size_t i = 0; i + 1 < text.size(); ++i) {
+    size_t end = i;  // one past the comment
     if (text.compare(i, 2, "//") == 0) {
-      out += ' ';
       // The compiler splices a line that ends in a backslash onto the next
       // before it looks for comments, so such a comment goes on there.
       for (;;) {
-        while (i < text.size() && text[i] != '\n') ++i;
-        if (i == text.size()) break;
-        out += '\n';
-        const bool spliced = (i >= 1 && text[i - 1] == '\\') || (i >= 2 && text[i - 1] == '\r' && text[i - 2] == '\\');
+        while (end < text.size() && text[end] != '\n') ++end;
+        const bool spliced = end < text.size() && ((end >= 1 && text[end - 1] == '\\') ||
+                                                   (end >= 2 && text[end - 1] == '\r' && text[end - 2] == '\\'));
         if (!spliced) break;
-        ++i;
+        ++end;
       }
     } else if (text.compare(i, 2, "/*") == 0) {
-      const size_t end = text.find("*/", i + 2);
-      const size_t stop = end == std::string_view::npos ? text.size() : end;
-      out += ' ';
-      for (size_t j = i; j < stop; ++j)
-        if (text[j] == '\n') out += '\n';
-      i = end == std::string_view::npos ? text.size() : end + 1;
+      const size_t close = text.find("*/", i + 2);
+      end = close == std::string_view::npos ? text.size() : close + 2;
     } else {
-      out += text[i];
+      continue;
     }
+    for (size_t j = i; j < end; ++j)
+      if (out[j] != '\n') out[j] = ' ';
+    i = end - 1;
   }
   return out;
 }

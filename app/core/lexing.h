@@ -81,10 +81,10 @@ bool has_word(std::string_view text, std::string_view word);
 // just before it ("void main(").
 bool has_call(std::string_view text, std::string_view name, std::string_view after = {});
 
-// The text with each comment replaced by a blank (it parts tokens, as in
-// the compiler) and the newlines it held, so that lines keep their numbers.
-// An unterminated /* runs to the end, and a // comment whose line ends in a
-// backslash runs on into the next line.
+// The text with each character of a comment blanked but its newlines: the
+// comment still parts tokens, as in the compiler, and every line and column
+// keeps its place. An unterminated /* runs to the end, and a // comment
+// whose line ends in a backslash runs on into the next line.
 std::string strip_comments(std::string_view text);
 
 // The text as the compiler's tokens see it: comments gone, each run of

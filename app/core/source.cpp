@@ -680,16 +680,21 @@ std::string stray_sampler_message(const std::string& name) {
 
 Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4>& bound, std::string_view active) {
   Diagnostics out;
+  const std::string code = lexing::strip_comments(source.text);  // with the file's columns
   // `expanded`: the line as the preprocessor gave it, where `name` is read.
   // A read through a macro is placed at the macro: the first word of the
   // line that the expansion replaced.
   auto warn_at = [&](int number, const std::string& name, std::string message, std::string_view expanded = {}) {
     auto [path, at_line] = source.locate(number);
-    const std::string line = source.final_line_text(number);
+    std::string_view line;
+    for_each_line(code, [&](std::string_view text, int n) {
+      if (n == number) line = text;
+      return n < number;
+    });
     std::optional<size_t> column = lexing::find_word(line, name);
     if (!column && !expanded.empty())
       lexing::any_word(line, [&](size_t begin, size_t end) {
-        if (lexing::has_word(expanded, std::string_view(line).substr(begin, end - begin))) return false;
+        if (lexing::has_word(expanded, line.substr(begin, end - begin))) return false;
         column = begin;
         return true;
       });
@@ -711,7 +716,6 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
   std::array<bool, 4> warned = bound;
   std::vector<StraySampler> strays;
   std::unordered_map<std::string, size_t> stray_index;
-  const std::string code = lexing::strip_comments(source.text);
   const std::string_view reads = active.empty() ? std::string_view(code) : active;
   for_each_line(reads, [&](std::string_view line, int number) {
     if (!own_line(number)) return true;

@@ -71,14 +71,14 @@ TEST_F(Cli, EachHelpShowsItsOwnCommand) {
 }
 
 // A channel the code reads with nothing bound is one warning at the first
-// line that reads it; a --channelN file or `#pragma channelN black` binds it.
+// line that reads it (at the read, not at a comment before it); a --channelN file or `#pragma channelN black` binds it.
 TEST_F(Cli, ReadingAnUnboundChannelIsOneWarningAtItsLine) {
   write_file(dir_ / "u.frag", "void mainImage(out vec4 c, in vec2 f) {\n  // iChannel2 in a comment is no read\n"
-                              "  c = texture(iChannel1, f) + texture(iChannel1, f);\n}\n");
+                              "  c = /* iChannel1 */ texture(iChannel1, f) + texture(iChannel1, f);\n}\n");
   const std::string scene = (dir_ / "u.frag").string();
   test::Outcome r = run("check " + scene);
   EXPECT_EQ(r.status, 0);
-  EXPECT_EQ(r.err, scene + ":3:15: warning: iChannel1 is read but nothing is bound to it, so it reads transparent "
+  EXPECT_EQ(r.err, scene + ":3:31: warning: iChannel1 is read but nothing is bound to it, so it reads transparent "
                            "black (#pragma channel1 \"FILE\" names an input)\n");
   r = run("render " + scene + " -o " + (dir_ / "o.png").string() + " --size 4x4 --channel1 " +
           std::string(RM_TEST_DATA_DIR) + "/../../examples/textures/phone_screen.png");
@@ -98,10 +98,10 @@ TEST_F(Cli, OnlyAReadTheCompilerSeesWarnsOfAnUnboundChannel) {
   write_file(dir_ / "if.frag", "#define TEX iChannel2\nuniform sampler2D myTex;\n"
                                "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(0.0);\n#ifdef FANCY\n"
                                "  c = texture(iChannel1, f) + texture(myTex, f);\n#endif\n#if 0\n"
-                               "  c += texture(iChannel0, f);\n#endif\n  c += texture(TEX, f);\n}\n");
+                               "  c += texture(iChannel0, f);\n#endif\n  c += /* TEX */ texture(TEX, f);\n}\n");
   const std::string scene = (dir_ / "if.frag").string();
   const std::string unbound = " is read but nothing is bound to it, so it reads transparent black (#pragma channel";
-  const std::string macro = scene + ":11:16: warning: iChannel2" + unbound + "2 \"FILE\" names an input)\n";
+  const std::string macro = scene + ":11:26: warning: iChannel2" + unbound + "2 \"FILE\" names an input)\n";
   for (const std::string& command : {"check " + scene, "render " + scene + " --size 4x4 -o " + (dir_ / "if.png").string()}) {
     test::Outcome r = run(command);
     EXPECT_EQ(r.status, 0) << command << '\n' << r.err;

@@ -1,5 +1,5 @@
-// The lexing the host does before the compiler: comments out (each one a
-// blank, as the compiler parts tokens there), and code_only(), by which two
+// The lexing the host does before the compiler: comments out (blanked, as
+// the compiler parts tokens there), and code_only(), by which two
 // texts that compile to the same program compare equal and no others do.
 #include "core/lexing.h"
 
@@ -8,12 +8,18 @@
 namespace rm::lexing {
 namespace {
 
-TEST(Lexing, ACommentIsABlankAndKeepsItsNewlines) {
-  EXPECT_EQ(strip_comments("a/**/b"), "a b");
-  EXPECT_EQ(strip_comments("a /* one\ntwo */ b // three\nc"), "a  \n b  \nc");
+TEST(Lexing, ACommentIsBlankedAndKeepsItsNewlines) {
+  EXPECT_EQ(strip_comments("a/**/b"), "a    b");
+  EXPECT_EQ(strip_comments("a /* one\ntwo */ b // three\nc"), "a       \n       b         \nc");
   // A line that ends in a backslash goes on in the next, comment and all.
-  EXPECT_EQ(strip_comments("a // b \\\nc\nd"), "a  \n\nd");
-  EXPECT_EQ(strip_comments("a // b \\\r\nc\r\nd"), "a  \n\nd");
+  EXPECT_EQ(strip_comments("a // b \\\nc\nd"), "a       \n \nd");
+  EXPECT_EQ(strip_comments("a // b \\\r\nc\r\nd"), "a        \n  \nd");
+  EXPECT_EQ(strip_comments("a /* open"), "a        ");
+  EXPECT_EQ(strip_comments("a /"), "a /");
+  // Every column keeps its place: a word after a comment is where it was.
+  const std::string line = "x /* iChannel0 */ = texture(iChannel0, uv); // iChannel0";
+  EXPECT_EQ(strip_comments(line).find("iChannel0"), line.find("iChannel0, uv"));
+  EXPECT_EQ(strip_comments(line).size(), line.size());
 }
 
 TEST(Lexing, CodeOnlyIsTheSameForTheSameTokens) {
