@@ -177,9 +177,11 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
       constants_rejected_.reset();
       continue;
     }
+    // Skeletons compared as code: a twin serves every text of the same tokens.
+    const std::string code = lexing::code_only(lifted.skeleton);
     std::string& failed = failed_twins_[static_cast<int>(scope)];
-    if (!lifted.ok || lifted.values.empty() || lifted.skeleton == failed) continue;
-    if (twin_ && twin_->scope == scope && twin_->skeleton == lifted.skeleton) {
+    if (!lifted.ok || lifted.values.empty() || code == failed) continue;
+    if (twin_ && twin_->scope == scope && lexing::code_only(twin_->skeleton) == code) {
       twin_current_ = generation_;
       return false;
     }
@@ -189,7 +191,7 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     const Source twin = twin_source(good_source_, lifted);
     std::optional<Program> built = Program::build(twin, &rejected);
     if (!built) {
-      failed = std::move(lifted.skeleton);
+      failed = code;
       if (constants) {
         const auto error = std::find_if(rejected.begin(), rejected.end(),
                                         [](const Diagnostic& d) { return d.severity == Severity::Error; });

@@ -32,8 +32,9 @@ enum class LiftScope { FunctionBodies, WithConstants };
 
 struct LiftedLiterals {
   LiftScope scope = LiftScope::FunctionBodies;
-  // The text, comments removed, with each lifted literal replaced by a mark:
-  // two texts with the same skeleton differ only in those literals.
+  // The text, comments blanked, with each lifted literal replaced by a mark:
+  // two texts whose skeletons have the same code (lexing::code_only) differ
+  // only in those literals, comments and blanks.
   std::string skeleton;
   std::vector<float> values;  // the lifted literals, in order
   std::vector<std::string> literals;  // the same, as written
