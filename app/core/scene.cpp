@@ -80,7 +80,7 @@ ReloadStatus Scene::prepare(const Cancelled& cancelled) {
     LiftedLiterals lifted = lift_literals(source, options_.shaderlib_dir, twin_->scope);
     // The same tokens: comments and blanks may differ (a comment-only save
     // left the twin's text behind).
-    if (lifted.ok && lexing::code_only(lifted.skeleton) == lexing::code_only(twin_->skeleton)) {
+    if (lifted.ok && lexing::code_only(lifted.skeleton) == twin_->code) {
       pending_tweak_ = Tweak{std::move(source), std::move(lifted.values), std::move(lifted.literals)};
       pending_diagnostics_.clear();  // not the last attempt's errors
       return ReloadStatus::Swapped;
@@ -181,7 +181,7 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
     const std::string code = lexing::code_only(lifted.skeleton);
     std::string& failed = failed_twins_[static_cast<int>(scope)];
     if (!lifted.ok || lifted.values.empty() || code == failed) continue;
-    if (twin_ && twin_->scope == scope && lexing::code_only(twin_->skeleton) == code) {
+    if (twin_ && twin_->scope == scope && twin_->code == code) {
       twin_current_ = generation_;
       return false;
     }
@@ -209,7 +209,7 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
       if (cancelled && cancelled()) return give_up();
       knobs = knob_values(twin);
     }
-    pending_twin_ = Twin{scope, std::move(lifted.skeleton), std::move(*built), std::move(knobs)};
+    pending_twin_ = Twin{scope, code, std::move(*built), std::move(knobs)};
     return true;
   }
   return false;

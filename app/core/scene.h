@@ -143,7 +143,7 @@ class Scene {
   bool pending_is_new_ = false;   // compiled by the latest prepare(), not warmed up yet
   struct Twin {
     LiftScope scope;
-    std::string skeleton;  // of the texts it can show (LiftedLiterals)
+    std::string code;  // lexing::code_only of its skeleton: the texts it can show (LiftedLiterals)
     Program program;
     std::vector<KnobValue> knobs;  // WithConstants: as its source has them, a lifted value by its name there
   };
