@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 #include <string_view>
@@ -256,6 +257,19 @@ Diagnostic locate(const Source& source, Severity severity, int final_line, int c
   return d;
 }
 
+// Why glslang may have run out of time or memory. All of shaderlib is under
+// 100 KiB, so a shader of megabytes is the likely cause itself (one of 4 MiB
+// needs over 512 MiB), and naming its size says so. A small one grew in
+// the preprocessor.
+std::string likely_cause(const Source& source) {
+  constexpr size_t kLargeShaderBytes = size_t{1} << 20;
+  if (source.text.size() < kLargeShaderBytes) return "(a macro that expands without end?)";
+  char size[32];
+  std::snprintf(size, sizeof size, "%.1f", static_cast<double>(source.text.size()) / (1 << 20));
+  return "of " + std::string(size) + " MiB in " + std::to_string(source.line_map.size()) +
+         " lines (more code than one shader can hold?)";
+}
+
 // What went wrong when glslang gave no verdict, said at the scene's file.
 Diagnostic no_verdict(const Source& source, const GlslangReply& reply) {
   Diagnostic d;
@@ -263,11 +277,11 @@ Diagnostic no_verdict(const Source& source, const GlslangReply& reply) {
   switch (reply.status) {
     case GlslangReply::Status::TimedOut:
       d.message = "glslang took more than " + std::to_string(static_cast<int>(kValidationSeconds)) +
-                  " s on this shader (a macro that expands without end?)";
+                  " s on this shader " + likely_cause(source);
       break;
     case GlslangReply::Status::OutOfMemory:
       d.message = "glslang needed more than " + std::to_string(kValidationBytes >> 20) +
-                  " MiB for this shader (a macro that expands without end?)";
+                  " MiB for this shader " + likely_cause(source);
       break;
     case GlslangReply::Status::NoWorker:
       d.message = "cannot check this shader: " + reply.output;

@@ -98,10 +98,17 @@ TEST_F(Pathological, LongRunsOfBlanksNewlinesAndComments) {
   write_file(dir_ / "comment.frag", "/*" + std::string(kTenMB, '*') + "*/\n" + kMain);
   write_file(dir_ / "line_comment.frag", "//" + std::string(kTenMB, 'x') + "\n" + kMain);
   write_file(dir_ / "unterminated.frag", kMain + "/* never closed\n");
+  // 10 MB of code: more than glslang parses in its 512 MiB (4 MiB is), so
+  // the line names the shader's size rather than guessing at a macro.
+  std::string code = "float many(vec2 f) {\n  float a = 0.0;\n";
+  for (int i = 0; code.size() < kTenMB; ++i) code += "  a += 0.5 * sin(f.x + " + std::to_string(i % 97) + ".0);\n";
+  write_file(dir_ / "code.frag", code + "  return a;\n}\n" + kMain);
   cases.push_back({path("newlines.frag"), 0, ""});
   cases.push_back({path("comment.frag"), 0, ""});
   cases.push_back({path("line_comment.frag"), 0, ""});
   cases.push_back({path("unterminated.frag"), 1, "unterminated.frag:2: error: 'comment' : End of input in comment"});
+  // Out of its memory; under ASan, perhaps of its time first: the same end.
+  cases.push_back({path("code.frag"), 1, "this shader of 10.0 MiB in 350777 lines (more code than one shader can hold?)"});
   run_table(cases);
 }
 

@@ -228,8 +228,9 @@ TEST_F(Gpu, BrokenReloadKeepsTheLastGoodProgram) {
 }
 
 // The window reloads through Scene: a save that includes a FIFO or a device,
-// grows past the size limit, nests too deep or expands a macro without end
-// fails with its reason, and the last good picture stays.
+// grows past the size limit, nests too deep, expands a macro without end or
+// holds more code than glslang can parse in its memory fails with its
+// reason, and the last good picture stays.
 TEST_F(Gpu, PathologicalSavesKeepTheLastGoodProgram) {
   const auto path = dir_ / "scene.frag";
   ASSERT_EQ(mkfifo((dir_ / "fifo.glsl").c_str(), 0644), 0);
@@ -241,12 +242,16 @@ TEST_F(Gpu, PathologicalSavesKeepTheLastGoodProgram) {
   std::string bomb = "float x = 1.0;\n#define A0 x+x\n";
   for (int i = 1; i <= 25; ++i)
     bomb += "#define A" + std::to_string(i) + " A" + std::to_string(i - 1) + "+A" + std::to_string(i - 1) + "\n";
+  std::string lines = "float many(vec2 f) {\n  float a = 0.0;\n";
+  for (int i = 0; lines.size() < (6u << 20); ++i) lines += "  a += 0.5 * sin(f.x + " + std::to_string(i % 97) + ".0);\n";
+  lines += "  return a;\n}\n";
   const std::vector<std::pair<std::string, std::string>> saves = {
       {"#include \"fifo.glsl\"\n", "is a named pipe (FIFO)"},
       {"#include \"/dev/zero\"\n", "is a character device"},
       {std::string(16u << 20, ' ') + "\n", "over the 16 MiB limit"},
       {"float x = 1.0;\nfloat y = " + sum + ";\n", "levels deep"},
       {bomb + "float y = A25;\n", "a macro that expands without end?"},
+      {lines, "this shader of 6.0 MiB in 2"},  // 2xxxxx lines; of its memory, or under ASan its time
   };
   for (const auto& [prefix, says] : saves) {
     write_file(path, prefix + "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0, 0.0, 0.0, 1.0); }\n");
