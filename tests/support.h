@@ -58,6 +58,14 @@ inline void write_file(const fs::path& path, const std::string& text) {
   out << text;
 }
 
+// A function `many` of at least `bytes` of plain code, one line
+// `a += 0.5 * sin(f.x + N.0);` after another: a shader huge by its size alone.
+inline std::string many_lines_of_code(size_t bytes) {
+  std::string code = "float many(vec2 f) {\n  float a = 0.0;\n";
+  for (int i = 0; code.size() < bytes; ++i) code += "  a += 0.5 * sin(f.x + " + std::to_string(i % 97) + ".0);\n";
+  return code + "  return a;\n}\n";
+}
+
 inline std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});

@@ -178,7 +178,7 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
       continue;
     }
     // Skeletons compared as code: a twin serves every text of the same tokens.
-    const std::string code = lexing::code_only(lifted.skeleton);
+    std::string code = lexing::code_only(lifted.skeleton);
     std::string& failed = failed_twins_[static_cast<int>(scope)];
     if (!lifted.ok || lifted.values.empty() || code == failed) continue;
     if (twin_ && twin_->scope == scope && twin_->code == code) {
@@ -209,7 +209,7 @@ bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
       if (cancelled && cancelled()) return give_up();
       knobs = knob_values(twin);
     }
-    pending_twin_ = Twin{scope, code, std::move(*built), std::move(knobs)};
+    pending_twin_ = Twin{scope, std::move(code), std::move(*built), std::move(knobs)};
     return true;
   }
   return false;

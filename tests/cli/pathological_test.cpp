@@ -100,9 +100,7 @@ TEST_F(Pathological, LongRunsOfBlanksNewlinesAndComments) {
   write_file(dir_ / "unterminated.frag", kMain + "/* never closed\n");
   // 10 MB of code: more than glslang parses in its 512 MiB (4 MiB is), so
   // the line names the shader's size rather than guessing at a macro.
-  std::string code = "float many(vec2 f) {\n  float a = 0.0;\n";
-  for (int i = 0; code.size() < kTenMB; ++i) code += "  a += 0.5 * sin(f.x + " + std::to_string(i % 97) + ".0);\n";
-  write_file(dir_ / "code.frag", code + "  return a;\n}\n" + kMain);
+  write_file(dir_ / "code.frag", test::many_lines_of_code(kTenMB) + kMain);
   cases.push_back({path("newlines.frag"), 0, ""});
   cases.push_back({path("comment.frag"), 0, ""});
   cases.push_back({path("line_comment.frag"), 0, ""});

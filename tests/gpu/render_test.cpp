@@ -242,16 +242,13 @@ TEST_F(Gpu, PathologicalSavesKeepTheLastGoodProgram) {
   std::string bomb = "float x = 1.0;\n#define A0 x+x\n";
   for (int i = 1; i <= 25; ++i)
     bomb += "#define A" + std::to_string(i) + " A" + std::to_string(i - 1) + "+A" + std::to_string(i - 1) + "\n";
-  std::string lines = "float many(vec2 f) {\n  float a = 0.0;\n";
-  for (int i = 0; lines.size() < (6u << 20); ++i) lines += "  a += 0.5 * sin(f.x + " + std::to_string(i % 97) + ".0);\n";
-  lines += "  return a;\n}\n";
   const std::vector<std::pair<std::string, std::string>> saves = {
       {"#include \"fifo.glsl\"\n", "is a named pipe (FIFO)"},
       {"#include \"/dev/zero\"\n", "is a character device"},
       {std::string(16u << 20, ' ') + "\n", "over the 16 MiB limit"},
       {"float x = 1.0;\nfloat y = " + sum + ";\n", "levels deep"},
       {bomb + "float y = A25;\n", "a macro that expands without end?"},
-      {lines, "this shader of 6.0 MiB in 2"},  // 2xxxxx lines; of its memory, or under ASan its time
+      {test::many_lines_of_code(6u << 20), "this shader of 6.0 MiB in 2"},  // 2xxxxx lines; of its memory, or under ASan its time
   };
   for (const auto& [prefix, says] : saves) {
     write_file(path, prefix + "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0, 0.0, 0.0, 1.0); }\n");
