@@ -1,7 +1,5 @@
 #include "core/capture.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <unistd.h>
@@ -16,6 +14,7 @@
 #include <cstring>
 
 #include "core/host_inputs.h"
+#include "core/image_codecs.h"
 #include "core/one_line.h"
 
 namespace rm {
@@ -75,29 +74,11 @@ int write_durably(const fs::path& path, std::string_view bytes) {
 }  // namespace
 
 std::string writable_image_extensions() {
-  // OIIO's "format:ext,ext;format:ext" list, kept to the writers that can
-  // encode into memory (what write_image needs), each format's first ext.
-  static const std::string list = [] {
-    std::string out;
-    std::string formats = OIIO::get_string_attribute("extension_list");
-    for (size_t at = 0; at < formats.size();) {
-      size_t end = formats.find(';', at);
-      if (end == std::string::npos) end = formats.size();
-      const std::string entry = formats.substr(at, end - at);
-      at = end + 1;
-      const size_t colon = entry.find(':');
-      if (colon == std::string::npos) continue;
-      std::string ext = entry.substr(colon + 1);
-      ext = ext.substr(0, ext.find(','));
-      if (entry.substr(0, colon) == "null") continue;  // OIIO's writer that writes nothing
-      auto writer = OIIO::ImageOutput::create(entry.substr(0, colon));
-      if (!writer || !writer->supports("ioproxy") || ext.empty()) continue;
-      out += (out.empty() ? "." : ", .") + ext;
-    }
-    OIIO::geterror();  // the formats without a writer leave a message behind
-    return out;
-  }();
-  return list;
+  const auto codecs = image_codecs();
+  if (auto why = codecs->unavailable()) return *why;
+  std::string out;
+  for (const std::string& ext : codecs->encodable_extensions()) out += (out.empty() ? "." : ", .") + ext;
+  return out;
 }
 
 std::string file_timestamp() {
@@ -121,10 +102,10 @@ fs::path temporary_sibling(const fs::path& path) {
 std::optional<std::string> check_output_path(const fs::path& path) {
   if (path.extension().empty())
     return "'" + path.string() + "' has no extension to choose an image format (" + writable_image_extensions() + ")";
-  auto out = OIIO::ImageOutput::create(path.string());
+  const auto codecs = image_codecs();
+  if (auto why = codecs->unavailable()) return *why;
   // write_image() encodes in memory, which some of OIIO's writers cannot.
-  if (!out || !out->supports("ioproxy")) {
-    OIIO::geterror();  // clear OIIO's pending message
+  if (!codecs->can_encode(path)) {
     return "'" + path.string() + "': cannot write images of type '" + path.extension().string() + "' (" +
            writable_image_extensions() + ")";
   }
@@ -147,27 +128,19 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
     return std::nullopt;
   }
   const bool as_float = is_float_format(path);
-  OIIO::ImageSpec spec(image.width, image.height, 4, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  spec.attribute("Software", "raymarching " RM_VERSION);
-  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+  Metadata attributes{{"Software", "raymarching " RM_VERSION}};
+  attributes.insert(attributes.end(), metadata.begin(), metadata.end());
+  const std::vector<unsigned char> bytes = as_float ? std::vector<unsigned char>() : to_rgba8(image);
+  const PixelsToEncode pixels{image.width, image.height,
+                              as_float ? static_cast<const void*>(image.rgba.data()) : bytes.data(), as_float};
 
   // The file is encoded in memory first and then written with checked
   // write() calls: OIIO's own file writers ignore a failing write (a full
   // disk left a truncated PNG that looked written).
   std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  auto out = OIIO::ImageOutput::create(path.string());
-  bool ok = out && out->set_ioproxy(&memory) && out->open(path.string(), spec);
-  if (ok) {
-    if (as_float) {
-      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
-    } else {
-      ok = out->write_image(OIIO::TypeDesc::UINT8, to_rgba8(image).data());
-    }
-    ok = out->close() && ok;
-  }
-  if (!ok) {
-    const std::string why = one_line(out ? out->geterror() : OIIO::geterror());
+  std::string why;
+  if (!image_codecs()->encode(path, pixels, attributes, &encoded, &why)) {
+    why = one_line(why);
     *error = "cannot encode '" + path.string() + "'" + (why.empty() ? "" : ": " + why);
     return std::nullopt;
   }
@@ -250,16 +223,6 @@ Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, cons
   return out;
 }
 
-Metadata read_metadata(const fs::path& path) {
-  Metadata out;
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) {
-    OIIO::geterror();
-    return out;
-  }
-  for (const auto& p : in->spec().extra_attribs)
-    if (p.type() == OIIO::TypeDesc::STRING) out.emplace_back(p.name().string(), p.get_string());
-  return out;
-}
+Metadata read_metadata(const fs::path& path) { return image_codecs()->metadata(path); }
 
 }  // namespace rm

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/image_codecs.h"
 #include "core/renderer.h"
 #include "core/source.h"
 
@@ -20,9 +21,6 @@ namespace fs = std::filesystem;
 // the window's --size and a screenshot at --shot-scale. A float picture of
 // 16384x16384 already holds 4 GiB.
 constexpr int kMaxPictureSide = 16384;
-
-// Attributes stored in the file, e.g. {"raymarching:iTime", "1.5"}.
-using Metadata = std::vector<std::pair<std::string, std::string>>;
 
 enum class Overwrite { Replace, Never };
 

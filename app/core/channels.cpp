@@ -1,11 +1,10 @@
 #include "core/channels.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 
 #include "core/cube_map.h"
 #include "core/files.h"
+#include "core/image_codecs.h"
 #include "core/one_line.h"
 #include "core/stderr_shut.h"
 #include "core/volume.h"
@@ -14,71 +13,61 @@ namespace rm {
 
 namespace {
 
-// Opens `path` and checks its header: no pixel is read yet.
-std::unique_ptr<OIIO::ImageInput> open_checked(const std::filesystem::path& path, std::string* error) {
+// Why a channel image with this header is refused before its pixels are read.
+std::optional<std::string> refused(const ImageHeader& header) {
+  // The header alone says how much memory reading would take: check it first.
+  if (header.width < 1 || header.height < 1 || header.width > kMaxImageSide || header.height > kMaxImageSide)
+    return "is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+           " pixels; a channel image may be 1 to " + std::to_string(kMaxImageSide) + " pixels a side";
+  if (header.depth > 1) return "is a volume image; a channel image is 2D";
+  if (header.channels < 1 || header.channels > kMaxImageChannels)
+    return "has " + std::to_string(header.channels) + " channels; a channel image may have 1 to " +
+           std::to_string(kMaxImageChannels) + " (the first 4 are used)";
+  return std::nullopt;
+}
+
+// Opens `path`, checks its header, and reads its pixels unless `header_only`.
+std::optional<DecodedImage> read_checked(const std::filesystem::path& path, bool header_only, std::string* error) {
   // OIIO's own words for these ("could not find a format reader") hide the cause.
   if (auto why = unreadable_because(path)) {
     *error = *why;
-    return nullptr;
+    return std::nullopt;
   }
-  std::unique_ptr<OIIO::ImageInput> in;
+  const auto codecs = image_codecs();
+  if (auto why = codecs->unavailable()) {
+    *error = *why;
+    return std::nullopt;
+  }
+  std::optional<DecodedImage> image;
   {
     const StderrShut quiet;
-    in = OIIO::ImageInput::open(path.string());
+    image = codecs->read(path, refused, header_only, error);
   }
-  if (!in) {
-    std::string why = one_line(OIIO::geterror());
+  if (!image) {
+    const std::string why = one_line(*error);
     *error = why.empty() ? "cannot open image" : why;
-    return nullptr;
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  // The header alone says how much memory reading would take: check it first.
-  if (spec.width < 1 || spec.height < 1 || spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
-    *error = "is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels; a channel image may be 1 to " +
-             std::to_string(kMaxImageSide) + " pixels a side";
-    return nullptr;
-  }
-  if (spec.depth > 1) {
-    *error = "is a volume image; a channel image is 2D";
-    return nullptr;
-  }
-  if (spec.nchannels < 1 || spec.nchannels > kMaxImageChannels) {
-    *error = "has " + std::to_string(spec.nchannels) + " channels; a channel image may have 1 to " +
-             std::to_string(kMaxImageChannels) + " (the first 4 are used)";
-    return nullptr;
-  }
-  return in;
+  return image;
 }
 
 }  // namespace
 
 bool check_channel_image(const std::filesystem::path& path, std::string* error) {
-  return open_checked(path, error) != nullptr;
+  return read_checked(path, true, error).has_value();
 }
 
 namespace {
 
 std::optional<Image> decode_channel_image(const std::filesystem::path& path, std::string* error) {
-  auto in = open_checked(path, error);
-  if (!in) return std::nullopt;
-  const OIIO::ImageSpec& spec = in->spec();
+  const auto decoded = read_checked(path, false, error);
+  if (!decoded) return std::nullopt;
   Image image;
-  image.width = spec.width;
-  image.height = spec.height;
-  const int channels = spec.nchannels;
-  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
-  bool read = false;
-  {
-    const StderrShut quiet;
-    read = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data());
-  }
-  if (!read) {
-    *error = one_line(in->geterror());
-    return std::nullopt;
-  }
+  image.width = decoded->header.width;
+  image.height = decoded->header.height;
+  const int channels = decoded->header.channels;
   // Expand grey, grey+alpha and RGB to RGBA.
   image.rgba.assign(static_cast<size_t>(image.width) * image.height * 4, 1.0f);
-  const float* src = pixels.data();
+  const float* src = decoded->pixels.data();
   float* dst = image.rgba.data();
   for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i, src += channels, dst += 4) {
     if (channels == 1) {

@@ -1,7 +1,5 @@
 #include "core/take.h"
 
-#include <OpenImageIO/hash.h>
-
 #include <algorithm>
 #include <cfloat>
 #include <climits>
@@ -102,7 +100,7 @@ std::string source_hash(const Source& source) {
     if (index < source.line_map.size() && source.line_map[index].file >= 0) user += line + '\n';
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx",
-                static_cast<unsigned long long>(OIIO::farmhash::Fingerprint64(user.data(), user.size())));
+                static_cast<unsigned long long>(image_codecs()->fingerprint(user)));
   return hex;
 }
 

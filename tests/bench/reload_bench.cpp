@@ -2,7 +2,9 @@
 // startup). Needs a display (run under xvfb-run): reload_bench RAYMARCHING SCENE_FOR_VALIDATION
 // Measures, with the real program in a real window:
 //   - cold start: from spawning the program to its first presented frame;
-//   - glslang validation (preprocess + check) of the largest shader we ship.
+//   - whole processes: `--version` (what starting and ending one costs) and
+//     `check` of the largest shader we ship, from spawning to exit;
+//   - glslang validation (preprocess + check) of that shader, in process.
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
@@ -13,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -91,6 +94,25 @@ std::string scene_text() {
          "  c = vec4(uv, fract(0.137 + iTime), 1.0);\n}\n";
 }
 
+// Milliseconds from spawning `argv` (output dropped) to its exit.
+double run_to_exit_ms(const std::vector<std::string>& argv) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  const long long start = now_ns();
+  pid_t pid = 0;
+  if (posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ) != 0) std::abort();
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) std::fprintf(stderr, "%s failed\n", argv[1].c_str()), std::exit(1);
+  return (now_ns() - start) / 1e6;
+}
+
 double percentile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
@@ -120,6 +142,13 @@ int main(int argc, char** argv) {
     cold_ms.push_back((presented_at(*line) - start) / 1e6);
   }
 
+  // Whole processes, ten times each.
+  std::vector<double> version_ms, check_ms;
+  for (int i = 0; i < 10; ++i) {
+    version_ms.push_back(run_to_exit_ms({binary, "--version"}));
+    check_ms.push_back(run_to_exit_ms({binary, "check", big_scene.string()}));
+  }
+
   // glslang validation of the largest shader, through the glslang worker.
   rm::SourceOptions options;
   options.shaderlib_dir = rm::shaderlib_dir();
@@ -140,6 +169,10 @@ int main(int argc, char** argv) {
   std::printf("| measure | median | p95 | runs |\n|---|---:|---:|---:|\n");
   std::printf("| cold start to first presented frame | %.1f ms | %.1f ms | %zu |\n", percentile(cold_ms, 0.5),
               percentile(cold_ms, 0.95), cold_ms.size());
+  std::printf("| a whole process: `raymarching --version` | %.1f ms | %.1f ms | %zu |\n", percentile(version_ms, 0.5),
+              percentile(version_ms, 0.95), version_ms.size());
+  std::printf("| a whole process: `raymarching check %s` | %.1f ms | %.1f ms | %zu |\n", big_scene.filename().c_str(),
+              percentile(check_ms, 0.5), percentile(check_ms, 0.95), check_ms.size());
   std::printf("| glslang preprocess + validate, %s (%zu lines, %zu bytes after includes) | %.1f ms | %.1f ms | %zu |\n",
               big_scene.filename().c_str(), lines, bytes, percentile(validate_ms, 0.5), percentile(validate_ms, 0.95),
               validate_ms.size());

@@ -54,6 +54,23 @@ TEST_F(Cli, HelpAndVersionExitZero) {
   EXPECT_EQ(run("render --help").status, 0);
 }
 
+// OpenImageIO and the 240 libraries under it cost a process 0.4 s to load:
+// only what reads or writes a picture loads them (core/image_codecs.h). The
+// dynamic loader's own log (LD_DEBUG=files) names every library it loads.
+TEST_F(Cli, OnlyWhatReadsOrWritesAPictureLoadsOpenImageIO) {
+  const auto loads_oiio = [&](const std::string& args) {
+    const test::Outcome r = test::run_binary(args, "LD_DEBUG=files ");
+    EXPECT_EQ(r.status, 0) << args << '\n' << r.err.substr(r.err.size() - std::min<size_t>(r.err.size(), 2000));
+    EXPECT_NE(r.err.find("file=libc.so"), std::string::npos) << "no loader log for " << args;
+    return r.err.find("file=libOpenImageIO.so") != std::string::npos;
+  };
+  EXPECT_FALSE(loads_oiio("--version"));
+  EXPECT_FALSE(loads_oiio("check " + good()));
+  EXPECT_FALSE(loads_oiio("render " + good() + " --size 4x4 -o " + (dir_ / "clip.mp4").string() + " --frames 2"));
+  EXPECT_TRUE(loads_oiio("render " + good() + " --size 4x4 -o " + (dir_ / "still.png").string()));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "still.png"));
+}
+
 // Each command's help shows what that command takes: the window's keys
 // only in the window's (the default command's) help.
 TEST_F(Cli, EachHelpShowsItsOwnCommand) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # An installed raymarching finds its bundled shaderlib (<rm/...>) and default
-# scene under <prefix>/share/raymarching, not in the source tree, and its
-# glslang worker under <prefix>/libexec/raymarching.
+# scene under <prefix>/share/raymarching, not in the source tree, its
+# glslang worker under <prefix>/libexec/raymarching, and its image module
+# under <prefix>/lib/raymarching (the libdir).
 set -euo pipefail
 build_dir=$1
 prefix=$(mktemp -d)
@@ -11,6 +12,10 @@ printf '#include <rm/sdf.glsl>\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4
 "$prefix/bin/raymarching" check "$prefix/scene.frag"
 test -f "$prefix/share/raymarching/examples/default.frag"
 test -x "$prefix/libexec/raymarching/raymarching-glslang"
+# A picture written loads the installed image module (the loader's log names it).
+LD_DEBUG=files "$prefix/bin/raymarching" render "$prefix/scene.frag" --size 4x4 -o "$prefix/still.png" 2>"$prefix/loads.txt"
+test -f "$prefix/still.png"
+grep -q "file=$prefix/lib[^ ]*/raymarching/raymarching-images.so" "$prefix/loads.txt"
 # The installed copy must be the one found: hide the source tree's by renaming the lib in the prefix.
 mv "$prefix/share/raymarching/shaderlib/rm/sdf.glsl" "$prefix/sdf.glsl.away"
 if "$prefix/bin/raymarching" check "$prefix/scene.frag" 2>"$prefix/err.txt"; then

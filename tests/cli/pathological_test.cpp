@@ -414,13 +414,25 @@ TEST_F(Pathological, APictureLargerThanTheMemoryIsOneLine) {
 // limit, not a missing package.
 TEST_F(Pathological, AnAddressSpaceLimitTooSmallForTheDriverIsNamed) {
   write_file(dir_ / "white.frag", kMain);
-  const test::Outcome r =
-      test::run_binary("render " + path("white.frag") + " -o " + path("out.png") + " --size 16x9", "ulimit -v 600000; ");
+  // A video needs no image module (core/image_codecs.h): the driver is the first to want more.
+  const test::Outcome r = test::run_binary(
+      "render " + path("white.frag") + " -o " + path("out.mp4") + " --frames 1 --size 16x8", "ulimit -v 600000; ");
   EXPECT_EQ(r.status, 2) << r.err;
   const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
   EXPECT_EQ(last, "raymarching: error: no EGL display offers an OpenGL 4.5 core context within this process's "
                   "address-space limit (ulimit -v 600000 KiB; Mesa's llvmpipe needs more than 1 GiB)\n")
       << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.mp4"));
+  // A picture's image module is loaded first, and under this limit cannot be.
+  const test::Outcome png =
+      test::run_binary("render " + path("white.frag") + " -o " + path("out.png") + " --size 16x9", "ulimit -v 600000; ");
+  EXPECT_EQ(png.status, 2) << png.err;
+  EXPECT_EQ(png.err.rfind("raymarching: error: cannot load the image module within this process's address-space limit "
+                          "(ulimit -v 600000 KiB): ",
+                          0),
+            0u)
+      << png.err;
+  EXPECT_EQ(std::count(png.err.begin(), png.err.end(), '\n'), 1) << png.err;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
 }
 

@@ -1,0 +1,110 @@
+// raymarching-images: the module the host loads on the first picture it
+// reads or writes (core/image_codecs.h says why it is not linked in). Only
+// OpenImageIO's calls live here; what the host checks and how it words its
+// errors stay in the core.
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/hash.h>
+#include <OpenImageIO/imageio.h>
+
+#include "core/image_codecs.h"
+
+namespace rm {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class OiioCodecs final : public ImageCodecs {
+ public:
+  std::optional<DecodedImage> read(const fs::path& path, const HeaderCheck& accept, bool header_only,
+                                   std::string* error) const override {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+      *error = OIIO::geterror();
+      return std::nullopt;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    DecodedImage image;
+    image.header = {spec.width, spec.height, spec.depth, spec.nchannels};
+    if (auto refused = accept(image.header)) {
+      *error = *refused;
+      return std::nullopt;
+    }
+    if (header_only) return image;
+    image.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+      *error = in->geterror();
+      return std::nullopt;
+    }
+    return image;
+  }
+
+  bool can_encode(const fs::path& path) const override {
+    auto out = OIIO::ImageOutput::create(path.string());
+    const bool yes = out && out->supports("ioproxy");  // the host encodes in memory
+    if (!out) OIIO::geterror();  // clear the pending message
+    return yes;
+  }
+
+  std::vector<std::string> encodable_extensions() const override {
+    // OIIO's "format:ext,ext;format:ext" list.
+    std::vector<std::string> out;
+    const std::string formats = OIIO::get_string_attribute("extension_list");
+    for (size_t at = 0; at < formats.size();) {
+      size_t end = formats.find(';', at);
+      if (end == std::string::npos) end = formats.size();
+      const std::string entry = formats.substr(at, end - at);
+      at = end + 1;
+      const size_t colon = entry.find(':');
+      if (colon == std::string::npos) continue;
+      const std::string format = entry.substr(0, colon), ext = entry.substr(colon + 1, entry.find(',', colon) - colon - 1);
+      if (format == "null" || ext.empty()) continue;  // OIIO's writer that writes nothing
+      auto writer = OIIO::ImageOutput::create(format);
+      if (writer && writer->supports("ioproxy")) out.push_back(ext);
+    }
+    OIIO::geterror();  // the formats without a writer leave a message behind
+    return out;
+  }
+
+  bool encode(const fs::path& path, const PixelsToEncode& pixels, const Metadata& metadata,
+              std::vector<unsigned char>* bytes, std::string* error) const override {
+    const OIIO::TypeDesc type = pixels.floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+    OIIO::ImageSpec spec(pixels.width, pixels.height, 4, type);
+    for (const auto& [key, value] : metadata) spec.attribute(key, value);
+    OIIO::Filesystem::IOVecOutput memory(*bytes);
+    auto out = OIIO::ImageOutput::create(path.string());
+    bool ok = out && out->set_ioproxy(&memory) && out->open(path.string(), spec);
+    if (ok) {
+      ok = out->write_image(type, pixels.data);
+      ok = out->close() && ok;
+    }
+    if (!ok) *error = out ? out->geterror() : OIIO::geterror();
+    return ok;
+  }
+
+  Metadata metadata(const fs::path& path) const override {
+    Metadata out;
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+      OIIO::geterror();
+      return out;
+    }
+    for (const auto& p : in->spec().extra_attribs)
+      if (p.type() == OIIO::TypeDesc::STRING) out.emplace_back(p.name().string(), p.get_string());
+    return out;
+  }
+
+  std::uint64_t fingerprint(std::string_view bytes) const override {
+    return OIIO::farmhash::Fingerprint64(bytes.data(), bytes.size());
+  }
+};
+
+}  // namespace
+
+}  // namespace rm
+
+// The module's one entry point, found by name (core/image_codecs.cpp).
+extern "C" __attribute__((visibility("default"))) const rm::ImageCodecs* rm_image_codecs() {
+  static const rm::OiioCodecs codecs;
+  return &codecs;
+}
