@@ -15,6 +15,16 @@ inline std::filesystem::path install_prefix() {
   return ec ? std::filesystem::path() : exe.parent_path().parent_path();
 }
 
+// A program's helper: <prefix>/`installed` when this program is installed
+// and that file is there, else `built`, the one built beside this program.
+inline std::filesystem::path installed_or_built(const std::filesystem::path& installed,
+                                                const std::filesystem::path& built) {
+  std::error_code ec;
+  if (const std::filesystem::path prefix = install_prefix(); !prefix.empty())
+    if (std::filesystem::exists(prefix / installed, ec)) return prefix / installed;
+  return built;
+}
+
 std::filesystem::path data_dir();
 inline std::filesystem::path shaderlib_dir() { return data_dir() / "shaderlib"; }
 inline std::filesystem::path default_scene() { return data_dir() / "examples" / "default.frag"; }

@@ -28,14 +28,7 @@ constexpr std::chrono::seconds kReplyTime{static_cast<int>(kValidationSeconds) *
 
 // Installed, the worker lives in <prefix>/libexec/raymarching, else it is the
 // one built beside this program.
-fs::path worker_path() {
-  std::error_code ec;
-  if (const fs::path prefix = install_prefix(); !prefix.empty()) {
-    const fs::path installed = prefix / RM_GLSLANG_WORKER_INSTALLED;
-    if (fs::exists(installed, ec)) return installed;
-  }
-  return RM_GLSLANG_WORKER_BUILT;
-}
+fs::path worker_path() { return installed_or_built(RM_GLSLANG_WORKER_INSTALLED, RM_GLSLANG_WORKER_BUILT); }
 
 class Worker {
  public:

@@ -17,14 +17,7 @@ namespace fs = std::filesystem;
 
 // Installed, the module lives in <prefix>/lib/raymarching, else it is the
 // one built beside this program.
-fs::path module_path() {
-  std::error_code ec;
-  if (const fs::path prefix = install_prefix(); !prefix.empty()) {
-    const fs::path installed = prefix / RM_IMAGE_MODULE_INSTALLED;
-    if (fs::exists(installed, ec)) return installed;
-  }
-  return RM_IMAGE_MODULE_BUILT;
-}
+fs::path module_path() { return installed_or_built(RM_IMAGE_MODULE_INSTALLED, RM_IMAGE_MODULE_BUILT); }
 
 // Codecs that could not be loaded: every call says why.
 class Unavailable final : public ImageCodecs {
