@@ -93,12 +93,4 @@ std::shared_ptr<const ImageCodecs> image_codecs() {
   return std::make_shared<Unavailable>(why);
 }
 
-void preload_image_codecs() {
-  try {
-    std::thread([] { image_codecs(); }).detach();
-  } catch (const std::system_error&) {
-    // Then the first picture read or written loads them, and says why not.
-  }
-}
-
 }  // namespace rm

@@ -70,8 +70,4 @@ class ImageCodecs {
 // with that; the next call tries again.
 std::shared_ptr<const ImageCodecs> image_codecs();
 
-// Starts loading the codecs on a thread of their own, so that the first
-// picture read or written later does not wait for them (the window).
-void preload_image_codecs();
-
 }  // namespace rm

@@ -20,7 +20,6 @@
 
 #include "core/capture.h"
 #include "core/channels.h"
-#include "core/image_codecs.h"
 #include "core/frame_budget.h"
 #include "core/frame_graph.h"
 #include "core/hw_performance.h"
@@ -562,12 +561,6 @@ class WindowApp {
     glfwSwapBuffers(window_);
     last_present_ns_ = steady_ns();
     ui_frames_ = std::max(0, ui_frames_ - 1);
-    // The image module loads beside the window once it shows a picture, not
-    // before, which it would hold back: F12 and a take then find it loaded.
-    if (!codecs_preloading_ && picture_.has_picture()) {
-      codecs_preloading_ = true;
-      preload_image_codecs();
-    }
     // Only once the program has drawn into it: a picture held for a build
     // (holds_for_build) shows the previous program's still.
     if (options_.verbose && presented_generation_ != drawn_generation_) {
@@ -1182,7 +1175,6 @@ class WindowApp {
   ShaderClock clock_;
   FrameInputs inputs_;
   int errors_ = 0;
-  bool codecs_preloading_ = false;
   int presented_generation_ = 0, drawn_generation_ = 0;  // of the last swap (-v), and of the last tile drawn
   bool shot_requested_ = false;
   std::deque<TiledShot> shots_;  // F12's pictures in progress, drawn in tiles, oldest first
