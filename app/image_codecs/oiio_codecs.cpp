@@ -47,6 +47,11 @@ class OiioCodecs final : public ImageCodecs {
   }
 
   std::vector<std::string> encodable_extensions() const override {
+    static const std::vector<std::string> list = find_encodable_extensions();  // a writer made per format: once
+    return list;
+  }
+
+  static std::vector<std::string> find_encodable_extensions() {
     // OIIO's "format:ext,ext;format:ext" list.
     std::vector<std::string> out;
     const std::string formats = OIIO::get_string_attribute("extension_list");
