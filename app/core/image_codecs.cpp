@@ -1,12 +1,14 @@
 #include "core/image_codecs.h"
 
 #include <dlfcn.h>
-#include <sys/resource.h>
+#include <unistd.h>
 
+#include <exception>
 #include <mutex>
 #include <system_error>
 #include <thread>
 
+#include "core/address_space.h"
 #include "core/data_paths.h"
 
 namespace rm {
@@ -45,29 +47,39 @@ class Unavailable final : public ImageCodecs {
 std::mutex loading;
 std::shared_ptr<const ImageCodecs> loaded;  // under `loading`; the module stays for the process's life
 
+// The line the process ends with if a library's initialiser terminates it
+// during the load; written before the load, since the handler may not allocate.
+std::string terminated_while_loading;
+
+[[noreturn]] void on_terminate_while_loading() {
+  const std::string& line = terminated_while_loading;
+  [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, line.data(), line.size());
+  _exit(2);
+}
+
 // nullptr with *why when the module cannot be loaded now.
 const ImageCodecs* load(std::string* why) {
-  // Libraries under OpenImageIO (log4cplus) start a thread as they load, and
-  // abort the process if it cannot start: the one thing a module cannot
-  // report. Starting one first turns that into a message.
+  // Libraries under OpenImageIO (log4cplus) start threads as they load, and
+  // call std::terminate if one cannot start. Starting one first turns the
+  // usual case, no thread to be had, into a message that the caller reports.
   try {
     std::thread([] {}).join();
   } catch (const std::system_error& e) {
     *why = std::string("a thread could not be started: ") + e.what() + " (out of memory or of threads)";
     return nullptr;
   }
+  // Near an address-space limit the probe's thread starts and theirs, once
+  // some 240 libraries are mapped, do not. Nothing can return from there, so
+  // the process ends with one line and status 2, not an abort.
+  terminated_while_loading = "raymarching: error: cannot load the image module" + within_address_space_limit() +
+                             ": a library it needs could not start a thread (out of memory or of threads)\n";
   const fs::path path = module_path();
+  const std::terminate_handler previous = std::set_terminate(on_terminate_while_loading);
   void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  std::set_terminate(previous);
   if (!module) {
     const char* error = dlerror();
-    // Under an address-space limit a library cannot be mapped, and the
-    // loader's words ("failed to map segment") do not say why.
-    struct rlimit space {};
-    const bool limited = getrlimit(RLIMIT_AS, &space) == 0 && space.rlim_cur != RLIM_INFINITY;
-    *why = "cannot load the image module" +
-           (limited ? " within this process's address-space limit (ulimit -v " + std::to_string(space.rlim_cur / 1024) + " KiB)"
-                    : std::string()) +
-           ": " + std::string(error ? error : path.string());
+    *why = "cannot load the image module" + within_address_space_limit() + ": " + (error ? error : path.string());
     return nullptr;
   }
   using Entry = const ImageCodecs* (*)();

@@ -3,11 +3,13 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
-#include <sys/resource.h>
+#include <dlfcn.h>
 
 #include <string>
 #include <vector>
 
+#include "core/address_space.h"
+#include "core/driver_ready.h"
 #include "core/gl_debug.h"
 
 namespace rm {
@@ -57,6 +59,15 @@ std::vector<EGLDisplay> candidate_displays() {
 }  // namespace
 
 std::unique_ptr<EglContext> EglContext::create(std::string* error) {
+  // libepoxy opens the GL library at the first GL call and aborts if it
+  // cannot (under an address-space limit, once the driver is mapped):
+  // opened first here, that is a message. Epoxy's own open then finds it.
+  if (!dlopen("libOpenGL.so.0", RTLD_LAZY | RTLD_LOCAL)) {
+    const char* why = dlerror();
+    *error = "cannot load libOpenGL.so.0" + within_address_space_limit() + ": " + (why ? why : "unknown") +
+             (address_space_limit_kib() ? "" : " (is libopengl0 installed?)");
+    return nullptr;
+  }
   for (EGLDisplay display : candidate_displays()) {
     if (display == EGL_NO_DISPLAY) continue;
     EGLContext context = make_context(display);
@@ -65,14 +76,18 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
     out->display_ = display;
     out->context_ = context;
     report_gl_errors();
+    if (const auto missing = driver_cannot_draw()) {
+      *error = *missing;
+      out.release();  // tearing the context down would wait for that draw for ever; the process ends
+      return nullptr;
+    }
     return out;
   }
   // Under an address-space limit Mesa cannot map its driver, and says the
   // file is missing: the limit is the likelier cause then.
-  struct rlimit space {};
-  if (getrlimit(RLIMIT_AS, &space) == 0 && space.rlim_cur != RLIM_INFINITY) {
+  if (const auto kib = address_space_limit_kib()) {
     *error = "no EGL display offers an OpenGL 4.5 core context within this process's address-space limit (ulimit -v " +
-             std::to_string(space.rlim_cur / 1024) + " KiB; Mesa's llvmpipe needs more than 1 GiB)";
+             std::to_string(*kib) + " KiB; Mesa's llvmpipe needs more than 1 GiB)";
     return nullptr;
   }
   *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";

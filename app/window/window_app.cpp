@@ -22,6 +22,7 @@
 #include "core/channels.h"
 #include "core/frame_budget.h"
 #include "core/frame_graph.h"
+#include "core/driver_ready.h"
 #include "core/hw_performance.h"
 #include "core/project.h"
 #include "core/gl_census.h"
@@ -1287,6 +1288,10 @@ int run_window(const WindowOptions& options) {
   }
   glfwMakeContextCurrent(window);
   report_gl_errors();
+  if (const auto missing = driver_cannot_draw()) {
+    std::cerr << "raymarching: error: " << *missing << '\n';
+    return kExitUsage;  // not torn down: that would wait for the draw for ever
+  }
   glfwSwapInterval(1);  // capped by vsync
   int status = kExitOk;
   {

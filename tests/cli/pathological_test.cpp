@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -434,6 +435,43 @@ TEST_F(Pathological, AnAddressSpaceLimitTooSmallForTheDriverIsNamed) {
       << png.err;
   EXPECT_EQ(std::count(png.err.begin(), png.err.end(), '\n'), 1) << png.err;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+}
+
+// Between a limit too small to load anything and one large enough, each
+// part of the process runs out in turn, and each says so in its own way. On
+// this machine (2026-11-29), 790-810 MB ended in log4cplus's std::terminate
+// as the image module loaded (134), 1000-1010 MB in a draw that never
+// finished (llvmpipe started one of its two threads; a Slurm job would sit
+// until its time limit), and 1030 MB in libepoxy's abort at the first GL
+// call. Every limit must end in the picture, or in one line, status 2 and no
+// file. The bands move with the libraries' sizes: the sweep is fine.
+TEST_F(Pathological, EveryAddressSpaceLimitEndsInThePictureOrOneLine) {
+  write_file(dir_ / "white.frag", kMain);
+  const std::filesystem::path out = dir_ / "out.png";
+  int pictures = 0;
+  for (long kib = 770000; kib <= 1070000; kib += 10000) {
+    SCOPED_TRACE("ulimit -v " + std::to_string(kib));
+    // --timeout: a hang ends as 124, not as a test that never ends.
+    const test::Outcome r =
+        test::run_binary("render " + path("white.frag") + " -o " + out.string() + " --size 16x9 --timeout 20",
+                         "ulimit -v " + std::to_string(kib) + "; ");
+    if (r.status == 0) {
+      EXPECT_TRUE(std::filesystem::exists(out));
+      std::filesystem::remove(out);
+      ++pictures;
+      continue;
+    }
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // Mesa's loader warns on its own as it fails to map the driver; the host's line is the last and only one.
+    std::istringstream lines(r.err);
+    std::vector<std::string> ours;
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line.rfind("libEGL warning: ", 0) != 0) ours.push_back(line);
+    ASSERT_EQ(ours.size(), 1u) << r.err;
+    EXPECT_EQ(ours[0].rfind("raymarching: error: ", 0), 0u) << r.err;
+  }
+  EXPECT_GT(pictures, 0) << "no limit in the sweep was large enough for a picture";
 }
 
 // With no thread to be had (out of memory for stacks, or past a limit of
