@@ -1,5 +1,8 @@
 #include "window/builder.h"
 
+#include <iostream>
+#include <new>
+
 #include "core/gl.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -23,7 +26,12 @@ void Builder::start(std::function<ReloadStatus()> build) {
   cancel_ = false;
   thread_ = DeepStackThread([this, build = std::move(build)] {
     glfwMakeContextCurrent(context_);
-    status_ = build();
+    try {
+      status_ = build();
+    } catch (const std::bad_alloc&) {  // uncaught on this thread, it would end the window
+      std::cerr << "raymarching: error: not enough memory to build the scene; the last good picture stays\n";
+      status_ = ReloadStatus::Failed;
+    }
     // Shared objects are complete for another context once this one has
     // finished with them: a swap's. llvmpipe's contexts share one
     // rasterizer, so glFinish also waits for the window's tile under way
