@@ -92,6 +92,13 @@ int render_frames(const RenderRequest& req) {
     return fail("--skip-existing goes on with frames already written, and a video is one file: give OUT a counter "
                 "(frame_%04d.png)",
                 kExitUsage);
+  char limit[64];
+  std::snprintf(limit, sizeof limit, "--timeout %g", req.timeout);
+  // Declared before the guard, whose watch may abandon it until the guard is gone.
+  std::unique_ptr<VideoEncoder> encoder;
+  // From here on: the checks below read images (the image module's load
+  // among them), and a limit or a signal ends them as it ends a draw.
+  RunGuard guard(req.timeout, limit);
   if (video) {
     if (!sequence)
       return fail("'" + req.out.string() + "': a video needs --frames COUNT or --duration SECONDS", kExitUsage);
@@ -127,11 +134,6 @@ int render_frames(const RenderRequest& req) {
       if (auto problem = view_problem(source, req.view))
         return fail("--view " + std::string(to_string(req.view)) + ": " + *problem, kExitUsage);
 
-  char limit[64];
-  std::snprintf(limit, sizeof limit, "--timeout %g", req.timeout);
-  // Declared before the guard, whose watch may abandon it until the guard is gone.
-  std::unique_ptr<VideoEncoder> encoder;
-  RunGuard guard(req.timeout, limit);
   // The glslang worker starts while EGL opens the display.
   GlslangWarmUp glslang(kHostVersionLine);
   std::string error;
