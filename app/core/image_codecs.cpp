@@ -9,7 +9,6 @@
 
 #include <chrono>
 #include <cstring>
-
 #include <exception>
 #include <mutex>
 #include <system_error>
@@ -64,15 +63,17 @@ std::string terminated_while_loading;
   _exit(2);
 }
 
+// Address space the trial load leaves free, so that the real load, whose
+// threads start a little sooner or later, passes where the trial did.
+constexpr size_t kTrialSpare = 64u << 20;
+
 // Loads the module in a child process, which has this one's address space
 // and limit: why it could not be loaded, or nothing when it could. Near an
 // address-space limit a library under OpenImageIO that cannot start all its
 // threads may end the process (log4cplus calls std::terminate) or wait for
 // ever (it waits on a thread pool it started only in part). Only the child
-// is lost then. It costs a second load (about 0.4 s), so it is tried only
+// is lost then. It costs a second load (about 0.5 s), so it is tried only
 // under a limit.
-constexpr size_t kTrialSpare = 64u << 20;
-
 std::optional<std::string> trial_load(const fs::path& path) {
   int words[2];
   if (pipe2(words, O_CLOEXEC) != 0) return std::nullopt;  // no trial: the load itself then says
@@ -85,8 +86,6 @@ std::optional<std::string> trial_load(const fs::path& path) {
   if (child == 0) {
     const int quiet = open("/dev/null", O_WRONLY);
     if (quiet >= 0) dup2(quiet, STDERR_FILENO);  // an abort's own words would make a second line
-    // The child passes with room to spare, so that the real load, whose
-    // threads start a little later or sooner, passes too.
     if (mmap(nullptr, kTrialSpare, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0) == MAP_FAILED) {
       const char why[] = "no room left for it";
       [[maybe_unused]] const ssize_t written = write(words[1], why, sizeof why - 1);

@@ -61,11 +61,12 @@ std::vector<EGLDisplay> candidate_displays() {
 std::unique_ptr<EglContext> EglContext::create(std::string* error) {
   // libepoxy opens the GL library at the first GL call and aborts if it
   // cannot (under an address-space limit, once the driver is mapped):
-  // opened first here, that is a message. Epoxy's own open then finds it.
-  if (!dlopen("libOpenGL.so.0", RTLD_LAZY | RTLD_LOCAL)) {
+  // opened first here, as epoxy would, that is a message. Epoxy's own open
+  // then finds it.
+  if (!dlopen("libOpenGL.so.0", RTLD_LAZY | RTLD_LOCAL) && !dlopen("libGL.so.1", RTLD_LAZY | RTLD_LOCAL)) {
     const char* why = dlerror();
-    *error = "cannot load libOpenGL.so.0" + within_address_space_limit() + ": " + (why ? why : "unknown") +
-             (address_space_limit_kib() ? "" : " (is libopengl0 installed?)");
+    *error = "cannot load libOpenGL.so.0 or libGL.so.1" + within_address_space_limit() + ": " +
+             (why ? why : "unknown") + (address_space_limit_kib() ? "" : " (is libopengl0 installed?)");
     return nullptr;
   }
   for (EGLDisplay display : candidate_displays()) {
