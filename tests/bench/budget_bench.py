@@ -80,6 +80,13 @@ def session(binary, scene, budget_on, work):
             "pictures": span, "still_s": still_s, "refined_s": refined_s, "quit_s": quit_s, "hidden_s": hidden_s, "trace": pictures(err)[:120]}
 
 
+def shader_info(scene):
+    """The info of a Shadertoy export, in either form the host reads:
+    {"Shader": {...}} as the site's API gives it, or the shader itself."""
+    doc = json.load(open(scene))
+    return doc.get("Shader", doc).get("info", {})
+
+
 def main():
     binary, csv_dir, scenes = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3:]
     rows, traces = [], {}
@@ -115,7 +122,7 @@ def main():
     def label(r):
         scene = next((s for s in scenes if os.path.basename(s) == r["name"] or s.endswith("/" + r["name"])), "")
         if scene.endswith(".json"):
-            return json.load(open(scene)).get("Shader", {}).get("info", {}).get("name", r["name"]).replace(",", " ")
+            return shader_info(scene).get("name", r["name"]).replace(",", " ")
         return r["name"]
     with open(os.path.join(csv_dir, "budget_share.csv"), "w") as f:
         f.write("scene,within 33.3 ms,over 33.3 ms\n")
@@ -129,12 +136,17 @@ def main():
     # Shadertoy exports: where each comes from (the site's id, name and author).
     for scene in scenes:
         if scene.endswith(".json"):
-            info = json.load(open(scene)).get("Shader", {}).get("info", {})
+            info = shader_info(scene)
             print(f"- {os.path.basename(scene)}: \"{info.get('name', '?')}\" by {info.get('username', '?')}, "
                   f"https://www.shadertoy.com/view/{info.get('id', '?')}")
 
-    # The heaviest scene's first pictures, both ways: the scale finding its step.
-    heaviest = max((r for r in rows if not r["budget_on"]), key=lambda r: statistics.median(r["intervals"] or [0]))
+    # The first pictures, both ways, of the heaviest scene that the budget
+    # scales (a feedback project's stay at full size): the scale finding its
+    # step. Heaviest by its full-size pictures' draw time, which a scene too
+    # heavy for two pictures in the measured span has too.
+    scaled = {r["name"] for r in rows if r["budget_on"] and r["scales"] and statistics.mean(r["scales"]) < 1}
+    heaviest = max((r for r in rows if not r["budget_on"] and r["name"] in scaled),
+                   key=lambda r: statistics.median([p["ms"] for p in r["trace"]] or [0]))
     on, off = traces.get((heaviest["name"], True), []), traces.get((heaviest["name"], False), [])
     with open(os.path.join(csv_dir, "budget_trace.csv"), "w") as f:
         f.write("picture,scale x 100 (budget on),draw ms (budget on),draw ms (budget off)\n")
