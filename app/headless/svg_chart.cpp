@@ -30,6 +30,20 @@ std::vector<double> ticks(double lo, double hi) {
   return out;
 }
 
+// Ticks for a log axis over [lo, hi] (both > 0): the powers of ten, and
+// their 2 and 5 multiples too when the range holds fewer than three powers.
+std::vector<double> log_ticks(double lo, double hi) {
+  std::vector<double> out;
+  for (const bool multiples : {false, true}) {
+    out.clear();
+    for (double decade = std::pow(10.0, std::floor(std::log10(lo))); decade <= hi; decade *= 10)
+      for (double m : multiples ? std::vector<double>{1, 2, 5} : std::vector<double>{1})
+        if (m * decade >= lo * (1 - 1e-9) && m * decade <= hi * (1 + 1e-9)) out.push_back(m * decade);
+    if (out.size() >= 3) break;
+  }
+  return out;
+}
+
 std::string escape(const std::string& s) {
   std::string out;
   for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
@@ -64,19 +78,23 @@ std::string legend_entry(size_t i, const std::string& name) {
 }  // namespace
 
 std::string svg_chart(const std::string& title, const std::string& x_label, const std::string& y_label,
-                      const std::vector<ChartSeries>& series) {
+                      const std::vector<ChartSeries>& series, YAxis y_axis) {
+  // y0 and y1 are on the axis's own scale: log10 of the values on a log axis.
+  const bool log_y = y_axis == YAxis::Log;
+  auto shown = [&](double x, double y) { return std::isfinite(x) && std::isfinite(y) && (!log_y || y > 0); };
+  auto on_axis = [&](double y) { return log_y ? std::log10(y) : y; };
   double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
   for (const auto& s : series)
     for (auto [x, y] : s.points) {
-      if (!std::isfinite(x) || !std::isfinite(y)) continue;
-      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      if (!shown(x, y)) continue;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, on_axis(y)), y1 = std::max(y1, on_axis(y));
     }
   if (x0 > x1) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
   const double padx = std::max(1e-6, (x1 - x0) * 0.05), pady = std::max(1e-6, (y1 - y0) * 0.05);
   x0 = std::max(0.0, x0 - padx), x1 += padx, y0 -= pady, y1 += pady;
   const double plot_w = kWidth - kLeft - kRight, plot_h = kHeight - kTop - kBottom;
   auto px = [&](double x) { return kLeft + (x - x0) / (x1 - x0) * plot_w; };
-  auto py = [&](double y) { return kTop + (1.0 - (y - y0) / (y1 - y0)) * plot_h; };
+  auto py = [&](double y) { return kTop + (1.0 - (on_axis(y) - y0) / (y1 - y0)) * plot_h; };
 
   std::string svg = begin_svg(title, kHeight);
   for (double t : ticks(x0, x1)) {
@@ -85,7 +103,7 @@ std::string svg_chart(const std::string& title, const std::string& x_label, cons
     svg += "<text x=\"" + number(px(t)) + "\" y=\"" + number(kTop + plot_h + 16) + "\" text-anchor=\"middle\">" +
            number(t) + "</text>\n";
   }
-  for (double t : ticks(y0, y1)) {
+  for (double t : log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : ticks(y0, y1)) {
     svg += "<line x1=\"" + number(kLeft) + "\" y1=\"" + number(py(t)) + "\" x2=\"" + number(kLeft + plot_w) +
            "\" y2=\"" + number(py(t)) + "\" stroke=\"#eee\"/>\n";
     svg += "<text x=\"" + number(kLeft - 6) + "\" y=\"" + number(py(t) + 4) + "\" text-anchor=\"end\">" + number(t) +
@@ -101,10 +119,10 @@ std::string svg_chart(const std::string& title, const std::string& x_label, cons
     const std::string colour = colour_of(i);
     std::string line;
     for (auto [x, y] : series[i].points)
-      if (std::isfinite(x) && std::isfinite(y)) line += number(px(x)) + "," + number(py(y)) + " ";
+      if (shown(x, y)) line += number(px(x)) + "," + number(py(y)) + " ";
     svg += "<polyline points=\"" + line + "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>\n";
     for (auto [x, y] : series[i].points)
-      if (std::isfinite(x) && std::isfinite(y))
+      if (shown(x, y))
         svg += "<circle cx=\"" + number(px(x)) + "\" cy=\"" + number(py(y)) + "\" r=\"3\" fill=\"" + colour + "\"/>\n";
     svg += legend_entry(i, series[i].name);
   }

@@ -14,8 +14,13 @@ struct ChartSeries {
   std::vector<std::pair<double, double>> points;  // (x, y), drawn in the given order
 };
 
+// How the y axis maps values: evenly, or by powers of ten, so that curves
+// that differ a hundredfold can be read on one chart. A log axis leaves out
+// the points at or below 0.
+enum class YAxis { Linear, Log };
+
 std::string svg_chart(const std::string& title, const std::string& x_label, const std::string& y_label,
-                      const std::vector<ChartSeries>& series);
+                      const std::vector<ChartSeries>& series, YAxis y_axis = YAxis::Linear);
 
 // One horizontal bar per category, made of one segment per series, in order.
 struct BarSeries {
