@@ -88,7 +88,7 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
   // file is missing: the limit is the likelier cause then.
   if (const auto kib = address_space_limit_kib()) {
     *error = "no EGL display offers an OpenGL 4.5 core context within this process's address-space limit (ulimit -v " +
-             std::to_string(*kib) + " KiB; Mesa's llvmpipe needs more than 1 GiB)";
+             std::to_string(*kib) + " KiB; with Mesa's llvmpipe a render needs about 1 GiB)";
     return nullptr;
   }
   *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";
