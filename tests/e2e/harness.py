@@ -1,7 +1,9 @@
 """What the window end-to-end tests share: pass/fail bookkeeping, waiting,
 xdotool, saving like an editor, and reading back screenshots."""
+import atexit
 import os
 import re
+import resource
 import shlex
 import shutil
 import subprocess
@@ -10,6 +12,7 @@ import time
 
 passed, failed = 0, 0
 work_dirs = []
+windows = []  # (binary, folder) of every window opened: where a crashed one left its core
 
 
 def check(name, ok, detail=""):
@@ -29,6 +32,32 @@ def work_dir(prefix):
     path = tempfile.mkdtemp(prefix=prefix)
     work_dirs.append(path)
     return path
+
+
+def print_crash_backtraces():
+    """A window that crashed (an abort, a segfault) left a core file in its
+    folder: each one's backtrace, every thread, goes into the log, since a
+    crash seen once in CI may not be seen again (a heap corruption in
+    e2e.window, 2026-12-01). At the script's exit, after summary() has
+    removed the folders of a test that passed, and after an exception too
+    (that crash's test ended in one). The core is removed: it is hundreds of
+    MB."""
+    for binary, folder in windows:
+        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+            if not re.fullmatch(r"core(\.\d+)?", name):
+                continue
+            core = os.path.join(folder, name)
+            print(f"a window crashed: backtrace of {core}:")
+            try:
+                gdb = ["gdb", "-batch", "-nx", "-iex", "set debuginfod enabled off", "-ex", "thread apply all bt 40"]
+                trace = subprocess.run([*gdb, binary, core], capture_output=True, text=True, timeout=120).stdout
+                print("\n".join(line for line in trace.splitlines() if line.startswith(("#", "Thread", "Program"))))
+            except (OSError, subprocess.TimeoutExpired) as e:
+                print(f"  no backtrace: {e}")
+            os.remove(core)
+
+
+atexit.register(print_crash_backtraces)
 
 
 def summary():
@@ -110,13 +139,22 @@ def mean_colour(image):
     return colour, (int(size.group(1)), int(size.group(2))) if size else None
 
 
+def allow_core_file():
+    """In the window's process, before it starts: a crash writes a core file
+    (print_crash_backtraces reads it), up to 4 GB."""
+    _, hard = resource.getrlimit(resource.RLIMIT_CORE)
+    resource.setrlimit(resource.RLIMIT_CORE, (4 << 30 if hard == resource.RLIM_INFINITY else min(4 << 30, hard), hard))
+
+
 def open_window(args, stdout_path, stderr_path, cwd, env=None):
     """Starts the program (a window) with its output in files. An X server
     resets when its last client leaves, and a window opened in that moment
     fails with "Failed to open display" (seen in CI between two windows of
     one test): such a start is tried again, up to three times."""
+    windows.append((args[0], cwd))
     for attempt in range(3):
-        proc = subprocess.Popen(args, stdout=open(stdout_path, "w"), stderr=open(stderr_path, "w"), cwd=cwd, env=env)
+        proc = subprocess.Popen(args, stdout=open(stdout_path, "w"), stderr=open(stderr_path, "w"), cwd=cwd, env=env,
+                                preexec_fn=allow_core_file)
         try:
             proc.wait(timeout=2.0)
         except subprocess.TimeoutExpired:
