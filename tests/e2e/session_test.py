@@ -85,10 +85,9 @@ class Session:
         save_by_rename(self.scene, scene_text)
         self.err_path = os.path.join(work, "stderr.txt")
         self.out_path = os.path.join(work, "stdout.txt")
-        self.proc = subprocess.Popen(
+        self.proc = harness.open_window(
             [binary, self.scene, "--size", f"{WINDOW[0]}x{WINDOW[1]}", "--shot-dir", self.shots, "-v"],
-            stdout=open(self.out_path, "w"), stderr=open(self.err_path, "w"), cwd=work,
-            env={**os.environ, "MALLOC_ARENA_MAX": "1"})
+            self.out_path, self.err_path, work, env={**os.environ, "MALLOC_ARENA_MAX": "1"})
         found = wait_for(lambda: xdotool("search", "--name", "scene.frag"), timeout=40)
         self.window = found.splitlines()[0] if found else None
         self.log, self.log_read, self.reload_lines = open(self.err_path, "rb"), b"", 0
