@@ -36,8 +36,16 @@ class Builder {
   void cancel() { cancel_ = true; }
   bool cancelled() const { return cancel_; }
 
+  // On the builder's thread, during a build: runs `draw` in a second context
+  // that shares the window's objects, then makes the builder's current
+  // again. A warm-up drawn once more there makes sure that Mesa's cache
+  // holds the new program's machine code before the window draws it
+  // (see the .cpp). Without that context, `draw` is not run.
+  void in_probe_context(const std::function<void()>& draw);
+
  private:
   GLFWwindow* context_ = nullptr;
+  GLFWwindow* probe_ = nullptr;
   DeepStackThread thread_;  // the driver's compiler recurses on deep shaders
   std::atomic<bool> done_{false}, cancel_{false};
   ReloadStatus status_ = ReloadStatus::Unchanged;

@@ -286,8 +286,10 @@ class WindowApp {
   // Each new program is drawn once into its pass's format, with what the
   // pass reads now where its channels are bound as before, with the images
   // the graph will read anew (read ahead), and elsewhere (a new pass, a
-  // channel the save changed) with textures like those it will read.
-  // `held`: the graph's images as the build starts (read_ahead).
+  // channel the save changed) with textures like those it will read; and
+  // drawn so again in the builder's probe context, so that Mesa's cache
+  // holds its code before the window draws it. `held`: the graph's images
+  // as the build starts (read_ahead).
   OnBuilt warm_up_hook(ImageTextures::HeldImages held) {
     return [this, states = graph_.pass_states(project_), held = std::move(held)](
                const fs::path& pass, const Program& program, const Source& source) {
@@ -303,6 +305,7 @@ class WindowApp {
           if (const GLuint texture = read_ahead(channels[c], held)) state.channels[c].texture = texture;
       }
       warm_up(program, state.format, state.channels);
+      builder_.in_probe_context([&] { warm_up(program, state.format, state.channels); });
     };
   }
 
