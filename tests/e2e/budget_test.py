@@ -510,9 +510,12 @@ def no_compile_in_the_window_twice(name, attempt, work):
     when it did not get that far (and said why), finds the window's first
     draws of new programs without a compile. Mesa writes its shader cache
     on a thread of its own, so the program the builder warmed up last,
-    drawn at once, can miss the entry under load (seen once in CI: a buffer
-    drawn first in 857 ms, the image it feeds in 4): one more try, with
-    new programs. A window that compiles them every time fails both."""
+    drawn at once, could miss the entry under load (seen once in CI: a
+    buffer drawn first in 857 ms, the image it feeds in 4). The builder
+    now draws each warm-up again in a second context, which finds the
+    entry or compiles the code itself (Builder::in_probe_context); one more
+    try, with new programs, is left for a cache writer held off even longer
+    than that. A window that compiles them every time fails both."""
     for tries in (1, 2):
         result = attempt(work)
         if result is None:

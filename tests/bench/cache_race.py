@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""How often the window's first draw of a new program generates its code
+itself, instead of finding it in Mesa's shader cache (a stall of the
+window as long as the compile). Run as:
+    xvfb-run -a python3 cache_race.py RAYMARCHING SCENE [EDITS] [--busy N]
+
+The scene's folder is copied, the copy opens in a 320x180 window with
+Mesa's cache empty, and EDITS (default 12) code edits are saved by rename,
+1.5 s apart (after each, the twin is built in the background). --busy N
+runs N busy loops beside it, as a loaded machine has (the race is lost
+under load: docs/performance-history.md). Prints the window's first draw
+of each new program (its 4x4 tile) and the builder's warm-up stage, and
+how many first draws took over 20 ms: those compiled in the window.
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
+from harness import save_by_rename, wait_for  # noqa: E402
+
+COMPILED_MS = 20  # a first draw that finds the code takes 2 to 12 ms here
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("binary")
+    parser.add_argument("scene")
+    parser.add_argument("edits", type=int, nargs="?", default=12)
+    parser.add_argument("--busy", type=int, default=0)
+    args = parser.parse_args()
+    work = tempfile.mkdtemp(prefix="rm-cache-race-")
+    folder = os.path.join(work, "scene")
+    shutil.copytree(os.path.dirname(os.path.abspath(args.scene)), folder, symlinks=True)
+    copy = os.path.join(folder, os.path.basename(args.scene))
+    original = open(copy).read()
+    err = os.path.join(work, "stderr.txt")
+    env = dict(os.environ, MESA_SHADER_CACHE_DIR=os.path.join(work, "mesa-cache"))
+    busy = [subprocess.Popen(["sh", "-c", "while :; do :; done"]) for _ in range(args.busy)]
+    with open(err, "w") as e:
+        window = subprocess.Popen([os.path.abspath(args.binary), copy, "--no-ui", "-v", "--size", "320x180"],
+                                  stdout=subprocess.DEVNULL, stderr=e, env=env)
+    log = lambda: open(err).read()  # noqa: E731
+    firsts = []
+    try:
+        if not wait_for(lambda: "presented generation 1 " in log(), timeout=60):
+            sys.exit("cache_race: the window never drew its first program")
+        for i in range(args.edits):
+            generation = i + 2
+            save_by_rename(copy, original + f"const float rm_cache_race_{i} = {i}.5;\n")
+            first = wait_for(lambda: re.search(rf"first draw of generation {generation}: a \d+x\d+ tile, ([0-9.]+) ms",
+                                               log()), timeout=60, step=0.02)
+            if not first:
+                sys.exit(f"cache_race: generation {generation} was never drawn")
+            firsts.append(float(first.group(1)))
+            time.sleep(1.5)
+    finally:
+        window.terminate()
+        window.wait(timeout=30)
+        for b in busy:
+            b.kill()
+    warms = [float(ms) for generation, ms in
+             re.findall(r"reload ok generation (\d+) \(rebuilt[^)]*warm-up ([0-9.]+) ms", log()) if int(generation) > 1]
+    print("the window's first draws, ms:", " ".join(f"{ms:.1f}" for ms in sorted(firsts)))
+    print("the builder's warm-up, ms:", " ".join(f"{ms:.0f}" for ms in sorted(warms)))
+    print(f"compiled in the window (over {COMPILED_MS} ms): {sum(ms > COMPILED_MS for ms in firsts)} of {len(firsts)}")
+    shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
