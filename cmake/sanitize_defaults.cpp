@@ -8,10 +8,6 @@
 
 extern "C" {
 
-// Libraries stay loaded until exit: Mesa unloads its driver at eglTerminate,
-// and a leak report cannot name (or suppress) code that is no longer mapped.
-int dlclose(void*) { return 0; }
-
 // Leak checking is off by default: GCC 12's LeakSanitizer tracer reads a
 // garbage dynamic-TLS range of Mesa's threads at exit and dies ("Tracer caught
 // signal 11"), failing tests that passed, depending only on memory layout (the

@@ -9,11 +9,6 @@
 
 extern "C" {
 
-// Libraries stay loaded until exit: Mesa unloads its driver at eglTerminate,
-// and ThreadSanitizer ends a program that unloads a library named in a
-// called_from_lib suppression ("is unloaded", status 66).
-int dlclose(void*) { return 0; }
-
 const char* __tsan_default_options() { return "exitcode=66:second_deadlock_stack=1"; }
 
 const char* __tsan_default_suppressions() {

@@ -14,7 +14,6 @@ how many first draws took over 20 ms: those compiled in the window.
 """
 import argparse
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -23,6 +22,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
 from harness import save_by_rename, wait_for  # noqa: E402
+from reload_examples import FIRST_DRAW, RELOAD  # noqa: E402  the -v lines it reads too
 
 COMPILED_MS = 20  # a first draw that finds the code takes 2 to 12 ms here
 
@@ -53,19 +53,18 @@ def main():
         for i in range(args.edits):
             generation = i + 2
             save_by_rename(copy, original + f"const float rm_cache_race_{i} = {i}.5;\n")
-            first = wait_for(lambda: re.search(rf"first draw of generation {generation}: a \d+x\d+ tile, ([0-9.]+) ms",
-                                               log()), timeout=60, step=0.02)
+            first = wait_for(lambda: next((m for m in FIRST_DRAW.finditer(log()) if int(m.group(1)) == generation),
+                                          None), timeout=60, step=0.02)
             if not first:
                 sys.exit(f"cache_race: generation {generation} was never drawn")
-            firsts.append(float(first.group(1)))
+            firsts.append(float(first.group(2)))
             time.sleep(1.5)
     finally:
         window.terminate()
         window.wait(timeout=30)
         for b in busy:
             b.kill()
-    warms = [float(ms) for generation, ms in
-             re.findall(r"reload ok generation (\d+) \(rebuilt[^)]*warm-up ([0-9.]+) ms", log()) if int(generation) > 1]
+    warms = [float(m.group(6)) for m in RELOAD.finditer(log()) if int(m.group(1)) > 1 and m.group(2) == "rebuilt"]
     print("the window's first draws, ms:", " ".join(f"{ms:.1f}" for ms in sorted(firsts)))
     print("the builder's warm-up, ms:", " ".join(f"{ms:.0f}" for ms in sorted(warms)))
     print(f"compiled in the window (over {COMPILED_MS} ms): {sum(ms > COMPILED_MS for ms in firsts)} of {len(firsts)}")
