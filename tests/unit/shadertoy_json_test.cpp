@@ -179,6 +179,24 @@ TEST(ShadertoyJson, ASecondPassOfOneKindIsLeftOutWithAWarning) {
                          }));
 }
 
+// Two buffers that write one output id (a JSON edited by hand): an input of
+// that id reads the first, and the second's claim is one warning.
+TEST(ShadertoyJson, AnOutputIdTwoBuffersWriteReadsTheFirst) {
+  const std::string json = R"({"renderpass": [
+      {"type": "buffer", "name": "Buffer B", "code": "B", "outputs": [{"id": 258, "channel": 0}]},
+      {"type": "buffer", "name": "Buffer A", "code": "A", "outputs": [{"id": 258, "channel": 0}]},
+      {"type": "image", "name": "Image", "code": "img", "inputs": [{"ctype": "buffer", "id": 258, "channel": 0}]}]})";
+  std::string error;
+  auto p = read(json, &error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->files["buffer_a.frag"], "A\n");
+  EXPECT_EQ(p->files["image.frag"], "img\n#pragma channel0 \"buffer_b.frag\"\n");
+  EXPECT_EQ(p->warnings, (std::vector<std::string>{
+                             "buffer pass 'Buffer A' writes output 258, as buffer_b.frag does; an input of 258 reads "
+                             "buffer_b.frag",
+                         }));
+}
+
 // A sampler setting Shadertoy does not spell so keeps the default, and says so.
 TEST(ShadertoyJson, ASamplerSettingShadertoyDoesNotHaveIsAWarning) {
   const std::string json = R"({"renderpass": [{"type": "image", "code": "x", "inputs": [
