@@ -9,6 +9,7 @@ build_packages=(
   libglfw3-dev libglm-dev glslang-dev glslang-tools libopenimageio-dev libegl-dev libepoxy-dev
   libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libimgui-dev
   libfontconfig-dev fonts-dejavu-core  # the interface's letters past ASCII
+  libfarmhash-dev  # a take's fingerprints of its sources
   libegl-mesa0 libgl1-mesa-dri  # Mesa: EGL and llvmpipe, for machines without a GPU
 )
 test_packages=(xvfb xauth xdotool twm x11-apps openimageio-tools python3 git clang libclang-rt-14-dev ffmpeg parallel

@@ -43,7 +43,6 @@ class Unavailable final : public ImageCodecs {
     return false;
   }
   Metadata metadata(const fs::path&) const override { return {}; }
-  std::uint64_t fingerprint(std::string_view) const override { return 0; }
   std::optional<std::string> unavailable() const override { return why_; }
 
  private:

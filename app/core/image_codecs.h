@@ -5,13 +5,11 @@
 // code that calls OpenImageIO is a module of its own (app/image_codecs/),
 // loaded the first time a picture is read or written.
 #pragma once
-#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -58,8 +56,6 @@ class ImageCodecs {
                       std::vector<unsigned char>* bytes, std::string* error) const = 0;
   // The string attributes of an image file; none if it cannot be read.
   virtual Metadata metadata(const std::filesystem::path& path) const = 0;
-  // A 64-bit fingerprint of `bytes` (FarmHash), the same in every run.
-  virtual std::uint64_t fingerprint(std::string_view bytes) const = 0;
   // Why none of the above can work here, if they cannot (the module did not load).
   virtual std::optional<std::string> unavailable() const { return std::nullopt; }
 };

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include <farmhash.h>
 #include <nlohmann/json.hpp>
 
 #include "core/capture.h"
@@ -100,7 +101,7 @@ std::string source_hash(const Source& source) {
     if (index < source.line_map.size() && source.line_map[index].file >= 0) user += line + '\n';
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx",
-                static_cast<unsigned long long>(image_codecs()->fingerprint(user)));
+                static_cast<unsigned long long>(util::Fingerprint64(user.data(), user.size())));
   return hex;
 }
 

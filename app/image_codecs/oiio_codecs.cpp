@@ -3,7 +3,6 @@
 // OpenImageIO's calls live here; what the host checks and how it words its
 // errors stay in the core.
 #include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/hash.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/image_codecs.h"
@@ -97,10 +96,6 @@ class OiioCodecs final : public ImageCodecs {
     for (const auto& p : in->spec().extra_attribs)
       if (p.type() == OIIO::TypeDesc::STRING) out.emplace_back(p.name().string(), p.get_string());
     return out;
-  }
-
-  std::uint64_t fingerprint(std::string_view bytes) const override {
-    return OIIO::farmhash::Fingerprint64(bytes.data(), bytes.size());
   }
 };
 
