@@ -10,7 +10,8 @@ has the drag and the key; two replays of it give identical frames, and
 identical videos; the frame the shot names (raymarching:take_frame) matches
 the shot; a replay at another rate and size has the frames that rate asks
 for; a take whose source changed since renders with one warning naming it;
-SIGTERM while a take records closes the window with the take written.
+a take does not load the image module; SIGTERM while a take records closes
+the window with the take written.
 """
 import filecmp
 import glob
@@ -174,6 +175,12 @@ def killed_while_recording(work, scene):
     xdotool("key", "--window", window, "F9")
     recording = wait_for(lambda: "take: recording" in open(out).read(), timeout=10)
     time.sleep(0.5)
+    # A take reads and writes no picture: it must not load the image module,
+    # which held the window for about 0.5 s while it loaded.
+    maps = open(f"/proc/{proc.pid}/maps").read() if proc.poll() is None else ""
+    check("a take does not load the image module (OpenImageIO)", recording and maps and
+          "raymarching-images" not in maps and "libOpenImageIO" not in maps,
+          [line.split()[-1] for line in maps.splitlines() if "OpenImageIO" in line or "raymarching-images" in line][:3])
     proc.terminate()
     try:
         status = proc.wait(timeout=30)
