@@ -14,7 +14,8 @@ build_packages=(
 )
 test_packages=(xvfb xauth xdotool twm x11-apps openimageio-tools python3 git clang libclang-rt-14-dev ffmpeg parallel
   slurmctld slurmd slurm-client munge  # a one-node Slurm that tests/farm/slurm_test.py starts
-  gdb)  # the backtrace of a window that crashed in an end-to-end test
+  gdb  # the backtrace of a window that crashed in an end-to-end test
+  fonts-wqy-microhei)  # Chinese letters, which the interface adds when a text holds them
 
 wanted=("${build_packages[@]}")
 if [[ "${1:-build}" == test ]]; then wanted+=("${test_packages[@]}"); fi

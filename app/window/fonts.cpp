@@ -1,7 +1,7 @@
 #include "window/fonts.h"
 
 #include <fontconfig/fontconfig.h>
-#include <imgui.h>
+#include <imgui_internal.h>  // ImTextCharFromUtf8
 
 #include <fstream>
 #include <iterator>
@@ -10,63 +10,147 @@ namespace rm {
 
 namespace {
 
-// What the merged font gives: the letters of paths and messages in Latin,
-// Greek and Cyrillic scripts, general punctuation and the replacement
-// character; each glyph is rasterised at the window's first frame (about
-// 1,000 glyphs, 15 ms for both sizes here). ASCII stays ProggyClean's. ImGui
-// keeps a pointer to this list.
+// What the merged font gives from the start: the letters of paths and
+// messages in Latin, Greek and Cyrillic scripts, general punctuation and the
+// replacement character; each glyph is rasterised at the window's first
+// frame (about 1,000 glyphs, 15 ms for both sizes here). ASCII stays
+// ProggyClean's.
 const ImWchar kPastAscii[] = {0x00A0, 0x024F, 0x0370, 0x03FF, 0x0400, 0x04FF, 0x2000, 0x206F, 0xFFFD, 0xFFFD, 0};
 
-constexpr FcChar32 kProbe = 0x00E4;  // ä: a font without it is no help
+bool in_past_ascii(unsigned letter) {
+  for (const ImWchar* r = kPastAscii; r[0]; r += 2)
+    if (letter >= r[0] && letter <= r[1]) return true;
+  return false;
+}
 
-// A monospace TrueType font with letters past ASCII, as fontconfig matches
-// "monospace"; "" when there is none.
-std::string monospace_font_file() {
-  if (!FcInit()) return "";
-  FcPattern* pattern = FcNameParse(reinterpret_cast<const FcChar8*>("monospace"));
+constexpr FcChar32 kProbe = 0x00E4;  // ä: a monospace font without it is no help
+constexpr size_t kMaxFiles = 8;      // fonts the added letters may come from
+
+// The first face that fontconfig sorts for `family` with `letter`, in a
+// format ImGui's rasteriser (stb_truetype) reads: TrueType or CFF, not a
+// bitmap or Type 1 font.
+bool find_face(const char* family, FcChar32 letter, std::string* path, int* index,
+               std::shared_ptr<void>* charset) {
+  if (!FcInit()) return false;
+  FcPattern* pattern = FcNameParse(reinterpret_cast<const FcChar8*>(family));
   FcCharSet* wanted = FcCharSetCreate();
-  FcCharSetAddChar(wanted, kProbe);
+  FcCharSetAddChar(wanted, letter);
   FcPatternAddCharSet(pattern, FC_CHARSET, wanted);
   FcConfigSubstitute(nullptr, pattern, FcMatchPattern);
   FcDefaultSubstitute(pattern);
   FcResult result;
-  FcPattern* match = FcFontMatch(nullptr, pattern, &result);
-  std::string file;
-  FcChar8* path = nullptr;
-  FcChar8* format = nullptr;
-  FcCharSet* has = nullptr;
-  // Only TrueType: ImGui's rasteriser (stb_truetype) reads no bitmap or Type 1 font.
-  if (match && FcPatternGetString(match, FC_FILE, 0, &path) == FcResultMatch &&
-      FcPatternGetString(match, FC_FONTFORMAT, 0, &format) == FcResultMatch &&
-      std::string(reinterpret_cast<const char*>(format)) == "TrueType" &&
-      FcPatternGetCharSet(match, FC_CHARSET, 0, &has) == FcResultMatch && FcCharSetHasChar(has, kProbe))
-    file = reinterpret_cast<const char*>(path);
-  if (match) FcPatternDestroy(match);
+  // The best match first; the sorted list of every face only if it will not do.
+  FcPattern* best = FcFontMatch(nullptr, pattern, &result);
+  FcFontSet* sorted = nullptr;
+  bool found = false;
+  for (int i = -1; !found; ++i) {
+    if (i == 0) sorted = FcFontSort(nullptr, pattern, FcFalse, nullptr, &result);
+    if (i >= 0 && (!sorted || i >= sorted->nfont)) break;
+    FcPattern* face = i < 0 ? best : sorted->fonts[i];
+    if (!face) continue;
+    FcChar8* file = nullptr;
+    FcChar8* format = nullptr;
+    FcCharSet* has = nullptr;
+    int face_index = 0;
+    if (FcPatternGetString(face, FC_FILE, 0, &file) != FcResultMatch ||
+        FcPatternGetString(face, FC_FONTFORMAT, 0, &format) != FcResultMatch ||
+        FcPatternGetCharSet(face, FC_CHARSET, 0, &has) != FcResultMatch || !FcCharSetHasChar(has, letter))
+      continue;
+    const std::string kind = reinterpret_cast<const char*>(format);
+    if (kind != "TrueType" && kind != "CFF") continue;
+    if (FcPatternGetInteger(face, FC_INDEX, 0, &face_index) != FcResultMatch) face_index = 0;
+    *path = reinterpret_cast<const char*>(file);
+    *index = face_index;
+    *charset = std::shared_ptr<void>(FcCharSetCopy(has), [](void* c) { FcCharSetDestroy(static_cast<FcCharSet*>(c)); });
+    found = true;
+  }
+  if (best) FcPatternDestroy(best);
+  if (sorted) FcFontSetDestroy(sorted);
   FcCharSetDestroy(wanted);
   FcPatternDestroy(pattern);
-  return file;
+  return found;
+}
+
+std::vector<char> read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) bytes.clear();
+  return bytes;
 }
 
 }  // namespace
 
 InterfaceFonts::InterfaceFonts(ImFontAtlas& atlas) {
-  const std::string file = monospace_font_file();
-  if (!file.empty()) {
-    std::ifstream in(file, std::ios::binary);
-    merged_bytes_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad() || merged_bytes_.empty()) merged_bytes_.clear();
-    else merged_file_ = file;
+  FontFile mono;
+  if (find_face("monospace", kProbe, &mono.path, &mono.index, &mono.charset)) {
+    mono.bytes = read_bytes(mono.path);
+    if (!mono.bytes.empty()) files_.push_back(std::move(mono));
+  }
+  add_fonts(atlas);
+}
+
+InterfaceFonts::FontFile* InterfaceFonts::file_for(ImWchar letter) {
+  for (FontFile& f : files_)
+    if (FcCharSetHasChar(static_cast<FcCharSet*>(f.charset.get()), letter)) return &f;
+  if (files_.size() >= kMaxFiles) return nullptr;
+  FontFile found;
+  if (!find_face("monospace", letter, &found.path, &found.index, &found.charset)) return nullptr;
+  found.bytes = read_bytes(found.path);
+  if (found.bytes.empty()) return nullptr;
+  files_.push_back(std::move(found));
+  return &files_.back();
+}
+
+bool InterfaceFonts::want(std::string_view text) {
+  bool found = false;
+  const char* at = text.data();
+  const char* end = at + text.size();
+  while (at < end) {
+    if (static_cast<unsigned char>(*at) < 0x80) {
+      ++at;
+      continue;
+    }
+    unsigned letter = 0;
+    const int bytes = ImTextCharFromUtf8(&letter, at, end);
+    at += bytes > 0 ? bytes : 1;
+    if (letter > IM_UNICODE_CODEPOINT_MAX || in_past_ascii(letter) || added_ >= kMaxAdded ||
+        !asked_.insert(letter).second)
+      continue;
+    if (FontFile* f = file_for(static_cast<ImWchar>(letter))) {
+      f->added.push_back(static_cast<ImWchar>(letter));
+      ++added_;
+      found = true;
+    }
+  }
+  return found;
+}
+
+void InterfaceFonts::rebuild(ImFontAtlas& atlas) {
+  atlas.Clear();
+  add_fonts(atlas);
+}
+
+void InterfaceFonts::add_fonts(ImFontAtlas& atlas) {
+  // ImGui keeps a pointer to each list until the atlas is built again.
+  for (size_t i = 0; i < files_.size(); ++i) {
+    FontFile& f = files_[i];
+    f.ranges.clear();
+    if (i == 0) f.ranges.assign(std::begin(kPastAscii), std::end(kPastAscii) - 1);
+    for (ImWchar letter : f.added) f.ranges.insert(f.ranges.end(), {letter, letter});
+    f.ranges.push_back(0);
   }
   auto add = [&](float pixels) {
     ImFontConfig own;
     own.SizePixels = pixels;
     ImFont* font = atlas.AddFontDefault(&own);
-    if (!merged_bytes_.empty()) {
+    for (const FontFile& f : files_) {
+      if (f.ranges.size() < 2) continue;
       ImFontConfig past;
       past.MergeMode = true;
-      past.FontDataOwnedByAtlas = false;  // merged_bytes_ holds them, for both sizes
-      atlas.AddFontFromMemoryTTF(merged_bytes_.data(), static_cast<int>(merged_bytes_.size()), pixels, &past,
-                                 kPastAscii);
+      past.FontDataOwnedByAtlas = false;  // files_ holds them, for both sizes
+      past.FontNo = f.index;
+      atlas.AddFontFromMemoryTTF(const_cast<char*>(f.bytes.data()), static_cast<int>(f.bytes.size()), pixels, &past,
+                                 f.ranges.data());
     }
     return font;
   };

@@ -227,6 +227,12 @@ void controls(Ui& ui, UiModel& model, UiChanges* changes) {
 
 }  // namespace
 
+void want_letters(Ui& ui, const UiModel& model) {
+  for (const Diagnostics* list : {&model.errors, &model.warnings})
+    for (const Diagnostic& d : *list) ui.want_letters(d.str());
+  for (const auto& [name, ms] : model.figures.passes) ui.want_letters(name);
+}
+
 UiChanges draw_panels(Ui& ui, UiModel& model) {
   UiChanges changes;
   hud(model);

@@ -68,6 +68,9 @@ struct UiChanges {
   std::optional<double> seek, speed;
 };
 
+// Hands the texts of the panels to ui.want_letters(), before ui.begin():
+// the paths and messages that may hold letters the fonts lack.
+void want_letters(Ui& ui, const UiModel& model);
 // Builds every panel of this frame (inside ui.begin() and ui.end()).
 UiChanges draw_panels(Ui& ui, UiModel& model);
 

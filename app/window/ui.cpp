@@ -52,8 +52,22 @@ void Ui::on_scroll(double x, double y) { ImGui_ImplGlfw_ScrollCallback(window_, 
 void Ui::on_cursor_enter(bool entered) { ImGui_ImplGlfw_CursorEnterCallback(window_, entered ? 1 : 0); }
 void Ui::on_focus(bool focused) { ImGui_ImplGlfw_WindowFocusCallback(window_, focused ? 1 : 0); }
 
+void Ui::want_letters(std::string_view text) {
+  if (fonts_->want(text)) fonts_due_ = true;
+}
+
 void Ui::begin() {
   if (!visible_) return;
+  if (fonts_due_) {
+    fonts_due_ = false;
+    ImFontAtlas& atlas = *ImGui::GetIO().Fonts;
+    const bool uploaded = atlas.TexID != ImTextureID{};  // else the backend's first frame uploads it
+    fonts_->rebuild(atlas);
+    if (uploaded) {
+      ImGui_ImplOpenGL3_DestroyFontsTexture();
+      ImGui_ImplOpenGL3_CreateFontsTexture();
+    }
+  }
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();

@@ -4,6 +4,7 @@
 // targets) never contain it.
 #pragma once
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,6 +41,9 @@ class Ui {
   void on_cursor_enter(bool entered);  // the backend reads the pointer only over its window
   void on_focus(bool focused);
 
+  // A text the next frame shows: letters it holds that the fonts lack are
+  // looked up, and the font atlas is built again at the next begin().
+  void want_letters(std::string_view text);
   // Starts a frame; widgets go between begin() and end(), which draws them
   // over the bound framebuffer. Both do nothing while hidden.
   void begin();
@@ -53,6 +57,7 @@ class Ui {
   GLFWwindow* window_;
   bool visible_ = true;
   bool in_frame_ = false;
+  bool fonts_due_ = false;  // want_letters() found letters the atlas lacks
   std::unique_ptr<InterfaceFonts> fonts_;  // outlives the context's atlas, which reads its bytes
   std::vector<glm::vec4> rects_, next_rects_;  // x, y, width, height of each panel
 };

@@ -592,6 +592,7 @@ class WindowApp {
     model_.time = clock_.time();
     model_.paused = clock_.paused();
     model_.speed = clock_.speed();
+    want_letters(ui_, model_);
     ui_.begin();
     const UiChanges changes = draw_panels(ui_, model_);
     ui_.end();

@@ -487,6 +487,39 @@ def warning_session():
     quit_with(proc, window, "q")
 
 
+def letters_of_any_script():
+    """An error at a path with a Chinese letter draws that letter, not the
+    replacement character (U+FFFD) that Dear ImGui draws for a letter its
+    atlas lacks: the same broken scene in a folder named 李 and in one named
+    U+FFFD shows different text, and the same as before in a third window
+    at 李."""
+    work = harness.work_dir("rm-e2e-letters-")
+    screens = []
+    for n, folder in enumerate(["\u674e", "\ufffd", "\u674e"]):
+        os.makedirs(os.path.join(work, folder), exist_ok=True)
+        scene = os.path.join(work, folder, "s.frag")
+        with open(scene, "w") as f:
+            f.write("void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(0.2) + nope;\n}\n")
+        err_path = os.path.join(work, f"stderr{n}.txt")
+        proc = open_window([BINARY, scene, "--size", "480x200", "-v"], os.path.join(work, f"stdout{n}.txt"), err_path,
+                           work)
+        window = wait_for(lambda: xdotool("search", "--onlyvisible", "--pid", str(proc.pid)), timeout=20)
+        wait_for(lambda: "error" in open(err_path).read(), timeout=20)
+        time.sleep(1.0)  # the overlay's first frames
+        screens.append(capture_screen(window.split()[0], os.path.join(work, f"screen{n}.ppm")) if window else None)
+        if window:
+            quit_with(proc, window.split()[0], "q")
+        else:
+            proc.kill()
+    if not all(screens):
+        check("the windows at 李 and U+FFFD open", False, screens)
+        return
+    overlay = (0, 120, 480, 80)  # where the error shows
+    differ = pixels_over(screens[0], screens[1], 0.1, work, overlay)
+    same = pixels_over(screens[0], screens[2], 0.1, work, overlay)
+    check("an error at a path with 李 draws the letter, not U+FFFD", differ > 20 and same == 0, (differ, same))
+
+
 KNOB_SIZE = (640, 400)
 # RM_MAX_STEPS's slider in examples/tori.frag's open panel at this size,
 # below Time (4 rows), Uniforms (spin, polish) and the knobs' header, frame
@@ -851,6 +884,7 @@ if __name__ == "__main__":
         interface_session()
         knob_session()
         warning_session()
+        letters_of_any_script()
         idle_costs_nothing()
         mesa_cache_off_is_said()
     finally:

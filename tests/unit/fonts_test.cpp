@@ -48,5 +48,38 @@ TEST(InterfaceFonts, AsciiIsDearImGuisOwnFont) {
   EXPECT_EQ(fonts.small()->FontSize, 11.0f);
 }
 
+// A text with letters past the first ranges (Chinese, Hebrew) adds them,
+// each from a font fontconfig finds (scripts/deps.sh installs WenQuanYi
+// Micro Hei for the Chinese ones), once: the atlas built again has them,
+// and what it had before.
+TEST(InterfaceFonts, LettersATextHoldsAreAddedFromAFontThatHasThem) {
+  ImFontAtlas atlas;
+  InterfaceFonts fonts(atlas);
+  build(atlas);
+  const ImWchar li = 0x674E, alef = 0x05D0;  // 李, א
+  ASSERT_EQ(fonts.normal()->FindGlyphNoFallback(li), nullptr);
+  EXPECT_TRUE(fonts.want("/home/\xE6\x9D\x8E/\xD7\x90.frag:3:1: error: x"));
+  EXPECT_FALSE(fonts.want("/home/\xE6\x9D\x8E/\xD7\x90.frag")) << "each letter is looked up once";
+  EXPECT_FALSE(fonts.want("plain ASCII, and \xC3\xA4 which the first ranges have"));
+  fonts.rebuild(atlas);
+  build(atlas);
+  for (ImFont* font : {fonts.normal(), fonts.small()})
+    for (ImWchar letter : {li, alef, ImWchar(0x00E4)}) {
+      const ImFontGlyph* glyph = font->FindGlyphNoFallback(letter);
+      ASSERT_NE(glyph, nullptr) << std::hex << letter;
+      EXPECT_GT(glyph->X1 - glyph->X0, 0.0f) << std::hex << letter << " is drawn, not blank";
+    }
+  EXPECT_EQ(fonts.normal()->FontSize, 13.0f);
+  EXPECT_EQ(fonts.small()->FontSize, 11.0f);
+}
+
+// A letter no font has (a private-use one), and bytes that are no UTF-8,
+// add nothing and leave the atlas as it is.
+TEST(InterfaceFonts, LettersNoFontHasAddNothing) {
+  ImFontAtlas atlas;
+  InterfaceFonts fonts(atlas);
+  EXPECT_FALSE(fonts.want("\xEE\x80\x80 \xFF\xFE \xC3"));
+}
+
 }  // namespace
 }  // namespace rm
