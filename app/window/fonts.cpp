@@ -26,9 +26,9 @@ bool in_past_ascii(unsigned letter) {
 constexpr FcChar32 kProbe = 0x00E4;  // ä: a monospace font without it is no help
 constexpr size_t kMaxFiles = 8;      // fonts the added letters may come from
 
-// The first face that fontconfig sorts for `family` with `letter`, in a
-// format ImGui's rasteriser (stb_truetype) reads: TrueType or CFF, not a
-// bitmap or Type 1 font.
+// A face that has `letter`, in a format ImGui's rasteriser (stb_truetype)
+// reads (TrueType or CFF, not a bitmap or Type 1 font): fontconfig's best
+// match for `family` with it, or else the first such face in its sorted list.
 bool find_face(const char* family, FcChar32 letter, std::string* path, int* index,
                std::shared_ptr<void>* charset) {
   if (!FcInit()) return false;
@@ -39,7 +39,6 @@ bool find_face(const char* family, FcChar32 letter, std::string* path, int* inde
   FcConfigSubstitute(nullptr, pattern, FcMatchPattern);
   FcDefaultSubstitute(pattern);
   FcResult result;
-  // The best match first; the sorted list of every face only if it will not do.
   FcPattern* best = FcFontMatch(nullptr, pattern, &result);
   FcFontSet* sorted = nullptr;
   bool found = false;
