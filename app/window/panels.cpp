@@ -28,6 +28,19 @@ std::optional<double> number(const std::string& text) {
   return v;
 }
 
+// At most kShownBytes of `text`, cut between two letters, with "…" after a
+// cut. Dear ImGui draws a text's letters into one list of 16-bit indices,
+// which a text of about 16,000 letters overflows (an assertion: a 30 KB
+// `// ui:` comment in a warning closed the window); stderr has the whole text.
+constexpr size_t kShownBytes = 2000;
+std::string shown(std::string text) {
+  if (text.size() <= kShownBytes) return text;
+  size_t cut = kShownBytes;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a letter
+  text.resize(cut);
+  return text + "\u2026";
+}
+
 std::string knob_text(const Knob& knob, float value) {
   char buf[32];
   if (knob.integer) std::snprintf(buf, sizeof buf, "%d", static_cast<int>(std::lround(value)));
@@ -54,7 +67,7 @@ void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
   if (!model.errors.empty()) {
     ImGui::TextColored(kErrorColour, "%zu %s; %s", model.errors.size(), model.errors.size() == 1 ? "error" : "errors",
                        model.has_picture ? "showing the last good picture" : "nothing to show yet");
-    for (const Diagnostic& d : model.errors) ImGui::TextColored(kErrorColour, "%s", d.str().c_str());
+    for (const Diagnostic& d : model.errors) ImGui::TextColored(kErrorColour, "%s", shown(d.str()).c_str());
   }
   if (!model.warnings.empty()) {
     ImGui::PushFont(ui.small_font());
@@ -62,7 +75,7 @@ void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
     ImGui::SameLine();
     ImGui::TextColored(kWarningColour, "%zu %s", model.warnings.size(),
                        model.warnings.size() == 1 ? "warning" : "warnings");
-    for (const Diagnostic& d : model.warnings) ImGui::TextColored(kWarningColour, "%s", d.str().c_str());
+    for (const Diagnostic& d : model.warnings) ImGui::TextColored(kWarningColour, "%s", shown(d.str()).c_str());
     ImGui::PopFont();
   }
   ImGui::PopTextWrapPos();
@@ -182,7 +195,7 @@ void knob_controls(UiModel& model, UiChanges* changes) {
     const Knob& knob = *k.value.knob;
     ImGui::PushID(knob.name);
     if (!number(k.value.value)) {
-      ImGui::Text("%s = %s", knob.name, k.value.value.c_str());
+      ImGui::Text("%s = %s", knob.name, shown(k.value.value).c_str());
     } else {
       const ImGuiSliderFlags flags = knob.logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
       if (knob.integer) {
