@@ -34,7 +34,8 @@ class InterfaceFonts {
 
   // Looks up, once each, the letters of `text` (UTF-8) that the fonts do
   // not have yet; true when one was found in a font, and rebuild() must run
-  // before the next frame for it to be drawn. A letter no font has stays '?'.
+  // before the next frame for it to be drawn. A letter no font has is drawn
+  // as Dear ImGui's fallback: U+FFFD from the monospace font, or '?'.
   bool want(std::string_view text);
   // Adds the fonts to `atlas` again, cleared first, with every letter
   // want() found; normal() and small() change. The caller uploads the

@@ -522,14 +522,11 @@ def letters_of_any_script():
         err_path = os.path.join(work, f"stderr{n}.txt")
         proc = open_window([BINARY, scene, "--size", "480x200", "-v"], os.path.join(work, f"stdout{n}.txt"), err_path,
                            work)
-        window = wait_for(lambda: xdotool("search", "--onlyvisible", "--pid", str(proc.pid)), timeout=20)
-        wait_for(lambda: "error" in open(err_path).read(), timeout=20)
+        window = first_frame_window(proc, "s.frag", err_path, marker="error: ")
         time.sleep(1.0)  # the overlay's first frames
-        screens.append(capture_screen(window.split()[0], os.path.join(work, f"screen{n}.ppm")) if window else None)
+        screens.append(capture_screen(window, os.path.join(work, f"screen{n}.ppm")) if window else None)
         if window:
-            quit_with(proc, window.split()[0], "q")
-        else:
-            proc.kill()
+            quit_with(proc, window, "q")
     if not all(screens):
         check("the windows at 李 and U+FFFD open", False, screens)
         return
