@@ -260,16 +260,19 @@ std::optional<ShadertoyProject> read_shadertoy_json(const std::string& text, con
         continue;
       }
       if (taken(buffer_file(index), name)) continue;
-      // An id two buffers write (a JSON edited by hand) reads the first, as a second pass of a kind is left out.
+      // An id two buffers write (a JSON edited by hand) reads the first, as a second pass of a kind is left
+      // out; one warning a pass, however many ids it shares.
+      bool shared = false;
       if (pass.contains("outputs") && pass["outputs"].is_array())
         for (const json& out : pass["outputs"]) {
           if (!out.is_object() || !out.contains("id")) continue;
           const std::string id = text_of(out["id"]);
           const auto [first, fresh] = buffer_of_output.emplace(id, index);
-          if (!fresh)
-            project.warnings.push_back("buffer pass '" + brief(name) + "' writes output " + brief(id) + ", as " +
-                                       buffer_file(first->second) + " does; an input of " + brief(id) + " reads " +
-                                       buffer_file(first->second));
+          if (fresh || first->second == index || shared) continue;
+          shared = true;
+          project.warnings.push_back("buffer pass '" + brief(name) + "' writes output " + brief(id) + ", as " +
+                                     buffer_file(first->second) + " does; an input of " + brief(id) + " reads " +
+                                     buffer_file(first->second));
         }
       passes.push_back({buffer_file(index), &pass});
     } else {

@@ -180,11 +180,13 @@ TEST(ShadertoyJson, ASecondPassOfOneKindIsLeftOutWithAWarning) {
 }
 
 // Two buffers that write one output id (a JSON edited by hand): an input of
-// that id reads the first, and the second's claim is one warning.
+// that id reads the first, and the second's claim is one warning, however
+// often it lists the id (and an id it lists twice alone is no conflict).
 TEST(ShadertoyJson, AnOutputIdTwoBuffersWriteReadsTheFirst) {
   const std::string json = R"({"renderpass": [
       {"type": "buffer", "name": "Buffer B", "code": "B", "outputs": [{"id": 258, "channel": 0}]},
-      {"type": "buffer", "name": "Buffer A", "code": "A", "outputs": [{"id": 258, "channel": 0}]},
+      {"type": "buffer", "name": "Buffer A", "code": "A", "outputs": [{"id": 258, "channel": 0}, {"id": 257},
+                                                                       {"id": 257}, {"id": 258}]},
       {"type": "image", "name": "Image", "code": "img", "inputs": [{"ctype": "buffer", "id": 258, "channel": 0}]}]})";
   std::string error;
   auto p = read(json, &error);
