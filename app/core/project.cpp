@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <tuple>
+#include <utility>
 
 #include "core/channel_spec.h"
 #include "core/files.h"
@@ -154,8 +155,15 @@ ReloadStatus Project::reload() {
 }
 
 ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled) {
+  return prepare(on_built, cancelled, true);
+}
+
+ReloadStatus Project::prepare_without_compiling() { return prepare({}, {}, false); }
+
+ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled, bool compile) {
   pending_.reset();
-  diagnostics_ = files_.warnings ? files_.warnings() : Diagnostics{};
+  Diagnostics shown = std::exchange(diagnostics_, files_.warnings ? files_.warnings() : Diagnostics{});
+  bool needs_compile = false;
   times_ = {};
   std::array<bool, 4> channels_given{};
   for (size_t c = 0; c < 4; ++c) channels_given[c] = !channel_overrides_[c].empty();
@@ -166,8 +174,12 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
       image_path_,
       [&](const fs::path& file) -> VisitedPass {
         Scene& scene = scene_for(file);
-        const ReloadStatus status = scene.prepare(cancelled);
+        const ReloadStatus status = compile ? scene.prepare(cancelled) : scene.prepare_without_compiling();
         times_ += scene.times();
+        if (status == ReloadStatus::NeedsCompile) {
+          needs_compile = true;
+          return {};
+        }
         if (status == ReloadStatus::Swapped) swapped.push_back(file);
         const Diagnostics& diags = scene.latest_diagnostics();
         diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());
@@ -188,7 +200,9 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
   };
   if (!walk.ok) {
     for (const fs::path& file : reached) scene_for(file).discard();
-    return ReloadStatus::Failed;
+    if (!needs_compile) return ReloadStatus::Failed;
+    diagnostics_ = std::move(shown);
+    return ReloadStatus::NeedsCompile;
   }
   if (!changed && same_passes()) return ReloadStatus::Unchanged;
   // Warmed up in the order they are drawn: Mesa writes the code it
@@ -212,19 +226,86 @@ bool Project::wants_twins() const {
 }
 
 bool Project::prepare_twins(const OnBuilt& on_built, const Cancelled& cancelled) {
-  bool any = false;
-  for (const Pass& pass : passes_) any = pass.scene->prepare_twin(on_built, cancelled) || any;
-  return any;
+  return take_twins(build_twins(twin_jobs(), on_built, cancelled));
 }
 
 void Project::commit_twins() {
   for (const Pass& pass : passes_) pass.scene->commit_twin();
 }
 
+Diagnostics Project::latest_diagnostics() const {
+  Diagnostics out = files_.warnings ? files_.warnings() : Diagnostics{};
+  for (const Pass& pass : passes_) {
+    const Diagnostics& diags = pass.scene->latest_diagnostics();
+    out.insert(out.end(), diags.begin(), diags.end());
+  }
+  return out;
+}
+
+std::vector<Scene::ExactJob> Project::exact_jobs() const {
+  std::vector<Scene::ExactJob> jobs;
+  for (const Pass& pass : passes_)
+    if (std::optional<Scene::ExactJob> job = pass.scene->exact_job()) jobs.push_back(std::move(*job));
+  return jobs;
+}
+
+std::vector<Scene::ExactResult> Project::build_exact(const std::vector<Scene::ExactJob>& jobs,
+                                                     const OnBuilt& on_built, const Cancelled& cancelled) {
+  std::vector<Scene::ExactResult> results;
+  for (const Scene::ExactJob& job : jobs) results.push_back(Scene::build_exact(job, on_built, cancelled));
+  return results;
+}
+
+ReloadStatus Project::take_exact(std::vector<Scene::ExactResult> results) {
+  pending_.reset();
+  times_ = {};
+  std::vector<fs::path> swapped;
+  bool failed = false;
+  for (Scene::ExactResult& result : results) {
+    const auto scene = scenes_.find(result.path);
+    if (scene == scenes_.end()) continue;
+    const ReloadStatus status = scene->second->take_exact(std::move(result));
+    times_ += scene->second->times();
+    if (status == ReloadStatus::Swapped) swapped.push_back(scene->first);
+    failed = failed || status == ReloadStatus::Failed;
+  }
+  // A project swaps all its passes or none: a failed one keeps every tweak.
+  if (failed)
+    for (const fs::path& file : swapped) scenes_.at(file)->discard();
+  if (failed || !swapped.empty()) diagnostics_ = latest_diagnostics();
+  if (failed) return ReloadStatus::Failed;
+  if (swapped.empty()) return ReloadStatus::Unchanged;
+  pending_ = PendingSwap{shown_.reached, shown_.cube_size, std::move(swapped)};
+  return ReloadStatus::Swapped;
+}
+
+std::vector<Scene::TwinJob> Project::twin_jobs() {
+  std::vector<Scene::TwinJob> jobs;
+  for (const Pass& pass : passes_)
+    if (std::optional<Scene::TwinJob> job = pass.scene->twin_job()) jobs.push_back(std::move(*job));
+  return jobs;
+}
+
+std::vector<Scene::TwinResult> Project::build_twins(const std::vector<Scene::TwinJob>& jobs, const OnBuilt& on_built,
+                                                    const Cancelled& cancelled) {
+  std::vector<Scene::TwinResult> results;
+  for (const Scene::TwinJob& job : jobs) results.push_back(Scene::build_twin(job, on_built, cancelled));
+  return results;
+}
+
+bool Project::take_twins(std::vector<Scene::TwinResult> results) {
+  bool any = false;
+  for (Scene::TwinResult& result : results)
+    if (const auto scene = scenes_.find(result.path); scene != scenes_.end())
+      any = scene->second->take_twin(std::move(result)) || any;
+  return any;
+}
+
 void Project::commit() {
   if (!pending_) return;
   const PendingSwap swap = std::move(*pending_);
   pending_.reset();
+  shown_ = swap;
   const std::vector<fs::path>& reached = swap.reached;
   const std::map<fs::path, int>& cube_size = swap.cube_size;
   for (const fs::path& file : reached) scene_for(file).commit();

@@ -86,6 +86,9 @@ class Project {
   // the drawing's reads: passes(), image(), the programs and their sources.
   // `cancelled` puts off the exact build of a tweak (Scene::prepare).
   ReloadStatus prepare(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  // prepare() where no pass needs a compile (Scene::prepare_without_compiling):
+  // else NeedsCompile, and the project is as it was. It reads no GL.
+  ReloadStatus prepare_without_compiling();
   void commit();
   // Number tweaks (core/tweak.h), over every pass. tweaked(): a pass shows a
   // tweak with its twin, and the next prepare() builds the exact program.
@@ -95,6 +98,19 @@ class Project {
   // are ready to commit_twins()).
   bool prepare_twins(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit_twins();
+  // The same two builds as jobs that touch no project while they run
+  // (Scene's three steps), so that the window can take a save meanwhile.
+  // The jobs are in draw order; take_exact() gives Swapped when an exact
+  // program is ready to commit(), take_twins() true when twins are ready to
+  // commit_twins().
+  std::vector<Scene::ExactJob> exact_jobs() const;
+  static std::vector<Scene::ExactResult> build_exact(const std::vector<Scene::ExactJob>& jobs,
+                                                     const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  ReloadStatus take_exact(std::vector<Scene::ExactResult> results);
+  std::vector<Scene::TwinJob> twin_jobs();
+  static std::vector<Scene::TwinResult> build_twins(const std::vector<Scene::TwinJob>& jobs,
+                                                    const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  bool take_twins(std::vector<Scene::TwinResult> results);
   // -I/-D for every pass, and for the image pass alone (a debug view); they
   // apply at the next reload().
   void set_options(SourceOptions all, SourceOptions image_only);
@@ -138,6 +154,8 @@ class Project {
 
  private:
   Scene& scene_for(const fs::path& file);
+  ReloadStatus prepare(const OnBuilt& on_built, const Cancelled& cancelled, bool compile);
+  Diagnostics latest_diagnostics() const;  // the file system's warnings, then each pass's
   bool collect(const fs::path& file, std::vector<fs::path>* order, Diagnostics* diags);
 
   fs::path image_path_;
@@ -154,6 +172,7 @@ class Project {
     std::vector<fs::path> rebuilt;
   };
   std::optional<PendingSwap> pending_;
+  PendingSwap shown_;  // the last one committed: the running graph's
   ReloadTimes times_;
   Diagnostics diagnostics_;
   int generation_ = 0;

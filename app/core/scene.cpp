@@ -43,7 +43,29 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ReloadStatus Scene::prepare(const Cancelled& cancelled) {
+ReloadStatus Scene::prepare(const Cancelled& cancelled) { return prepare(cancelled, true); }
+
+ReloadStatus Scene::prepare_without_compiling() { return prepare({}, false); }
+
+Scene::Compiled Scene::compile(const Source& source, ReloadTimes* times, const std::function<bool()>& put_off) {
+  Compiled out;
+  auto start = std::chrono::steady_clock::now();
+  out.diagnostics = validate(source, &out.active, knob_probes());
+  times->validate = ms_since(start);
+  if (count_errors(out.diagnostics) > 0) return out;
+  if (put_off && put_off()) {
+    out.put_off = true;
+    return out;
+  }
+  Diagnostics driver;
+  start = std::chrono::steady_clock::now();
+  out.program = Program::build(source, &driver);
+  times->driver = ms_since(start);
+  if (!out.program) out.diagnostics = std::move(driver);
+  return out;
+}
+
+ReloadStatus Scene::prepare(const Cancelled& cancelled, bool compile_allowed) {
   auto put_off = [&] {
     if (!showing_twin_ || !cancelled || !cancelled()) return false;
     attempted_ = false;  // the next prepare() builds it
@@ -86,29 +108,66 @@ ReloadStatus Scene::prepare(const Cancelled& cancelled) {
       return ReloadStatus::Swapped;
     }
   }
-  if (put_off()) return ReloadStatus::Unchanged;
-  std::string active;
-  start = std::chrono::steady_clock::now();
-  Diagnostics diags = validate(source, &active, knob_probes());
-  times_.validate = ms_since(start);
-  if (count_errors(diags) > 0) {
-    diagnostics_ = std::move(diags);
-    return ReloadStatus::Failed;
+  if (!compile_allowed) {
+    // The text of the tweak on screen: its exact program is the background build's.
+    if (showing_twin_ && source.text == good_source_.text) return ReloadStatus::Unchanged;
+    attempted_ = false;  // the build that follows compiles it
+    return ReloadStatus::NeedsCompile;
   }
   if (put_off()) return ReloadStatus::Unchanged;
-  Diagnostics driver;
-  start = std::chrono::steady_clock::now();
-  std::optional<Program> built = Program::build(source, &driver);
-  times_.driver = ms_since(start);
-  if (!built) {
-    diagnostics_ = std::move(driver);
+  Compiled built = compile(source, &times_, put_off);
+  if (built.put_off) return ReloadStatus::Unchanged;
+  if (!built.program) {
+    diagnostics_ = std::move(built.diagnostics);
     return ReloadStatus::Failed;
   }
   if (put_off()) return ReloadStatus::Unchanged;
   std::string text = source.text;
-  pending_ = Built{std::move(text), std::move(*built), std::move(source), std::move(active)};
+  pending_ = Built{std::move(text), std::move(*built.program), std::move(source), std::move(built.active)};
   pending_is_new_ = true;
-  pending_diagnostics_ = std::move(diags);  // warnings only
+  pending_diagnostics_ = std::move(built.diagnostics);  // warnings only
+  return ReloadStatus::Swapped;
+}
+
+std::optional<Scene::ExactJob> Scene::exact_job() const {
+  if (!showing_twin_) return std::nullopt;
+  return ExactJob{path_, good_source_, generation_};
+}
+
+Scene::ExactResult Scene::build_exact(const ExactJob& job, const OnBuilt& on_built, const Cancelled& cancelled) {
+  ExactResult out;
+  out.path = job.path;
+  out.generation = job.generation;
+  auto put_off = [&] { return out.put_off = cancelled && cancelled(); };
+  if (put_off()) return out;
+  Compiled built = compile(job.source, &out.times, put_off);
+  out.put_off = built.put_off;
+  out.diagnostics = std::move(built.diagnostics);
+  if (!built.program || put_off()) return out;
+  const auto start = std::chrono::steady_clock::now();
+  if (on_built) on_built(job.path, *built.program, job.source);
+  out.times.warm = ms_since(start);
+  out.built = Built{job.source.text, std::move(*built.program), job.source, std::move(built.active)};
+  return out;
+}
+
+ReloadStatus Scene::take_exact(ExactResult result) {
+  times_ = result.times;
+  if (result.put_off) return ReloadStatus::Unchanged;
+  // Shown meanwhile: a tweak, another program, or a save that failed.
+  const bool stale = result.generation != generation_ || !showing_twin_ || !attempted_ ||
+                     attempted_text_ != good_source_.text;
+  if (stale) {
+    if (result.built) cache(std::move(*result.built));
+    return ReloadStatus::Unchanged;
+  }
+  if (!result.built) {
+    diagnostics_ = std::move(result.diagnostics);
+    return ReloadStatus::Failed;
+  }
+  pending_ = std::move(result.built);
+  pending_is_new_ = false;  // warmed up by the build
+  pending_diagnostics_ = std::move(result.diagnostics);
   return ReloadStatus::Swapped;
 }
 
@@ -162,57 +221,91 @@ void Scene::discard() {
 }
 
 bool Scene::prepare_twin(const OnBuilt& on_built, const Cancelled& cancelled) {
-  auto give_up = [&] {
-    twin_checked_ = -1;  // wanted still
-    return false;
-  };
+  std::optional<TwinJob> job = twin_job();
+  return job && take_twin(build_twin(*job, on_built, cancelled));
+}
+
+std::optional<Scene::TwinJob> Scene::twin_job() {
   twin_checked_ = generation_;
-  if (!program_ || showing_twin_) return false;
+  if (!program_ || showing_twin_) return std::nullopt;
+  TwinJob job{path_, good_source_, options_.shaderlib_dir, std::nullopt, "", {failed_twins_[0], failed_twins_[1]},
+              generation_};
+  if (twin_) job.scope = twin_->scope, job.code = twin_->code;
+  return job;
+}
+
+Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built, const Cancelled& cancelled) {
+  TwinResult out;
+  out.path = job.path;
+  out.generation = job.generation;
+  out.failed[0] = job.failed[0];
+  out.failed[1] = job.failed[1];
+  auto give_up = [&] { return out.gave_up = cancelled && cancelled(); };
+  auto note_rejected = [&](std::optional<Diagnostic> why) {
+    out.rejected_known = true;
+    out.rejected = std::move(why);
+  };
   // The twin that lifts the constants too, unless the driver rejects it (a
   // constant some other constant needs): then the one of the function bodies.
   for (const LiftScope scope : {LiftScope::WithConstants, LiftScope::FunctionBodies}) {
-    LiftedLiterals lifted = lift_literals(good_source_, options_.shaderlib_dir, scope);
+    LiftedLiterals lifted = lift_literals(job.source, job.shaderlib_dir, scope);
     const bool constants = scope == LiftScope::WithConstants;
     if (constants && lifted.constants == 0) {  // the same as the other
-      constants_rejected_.reset();
+      note_rejected(std::nullopt);
       continue;
     }
     // Skeletons compared as code: a twin serves every text of the same tokens.
     std::string code = lexing::code_only(lifted.skeleton);
-    std::string& failed = failed_twins_[static_cast<int>(scope)];
+    std::string& failed = out.failed[static_cast<int>(scope)];
     if (!lifted.ok || lifted.values.empty() || code == failed) continue;
-    if (twin_ && twin_->scope == scope && twin_->code == code) {
-      twin_current_ = generation_;
-      return false;
+    if (job.scope == scope && job.code == code) {
+      out.current = true;
+      return out;
     }
-    if (cancelled && cancelled()) return give_up();
+    if (give_up()) return out;
     // The exact program built: a twin the driver rejects is only not there.
     Diagnostics rejected;
-    const Source twin = twin_source(good_source_, lifted);
+    const Source twin = twin_source(job.source, lifted);
     std::optional<Program> built = Program::build(twin, &rejected);
     if (!built) {
       failed = code;
       if (constants) {
         const auto error = std::find_if(rejected.begin(), rejected.end(),
                                         [](const Diagnostic& d) { return d.severity == Severity::Error; });
-        constants_rejected_ = error != rejected.end() ? *error : Diagnostic{Severity::Error, "", 0, 0, "rejected"};
+        note_rejected(error != rejected.end() ? *error : Diagnostic{Severity::Error, "", 0, 0, "rejected"});
       }
       continue;
     }
-    if (constants) constants_rejected_.reset();
-    if (cancelled && cancelled()) return give_up();
-    if (on_built) on_built(path_, *built, twin);
+    if (constants) note_rejected(std::nullopt);
+    if (give_up()) return out;
+    if (on_built) on_built(job.path, *built, twin);
     // A knob's #define or -D may hold a lifted number (a constant): its
     // value is then the tweak's, which the twin's preprocessor gives by name.
     std::vector<KnobValue> knobs;
     if (constants) {
-      if (cancelled && cancelled()) return give_up();
+      if (give_up()) return out;
       knobs = knob_values(twin);
     }
-    pending_twin_ = Twin{scope, std::move(code), std::move(*built), std::move(knobs)};
-    return true;
+    out.twin = Twin{scope, std::move(code), std::move(*built), std::move(knobs)};
+    return out;
   }
-  return false;
+  return out;
+}
+
+bool Scene::take_twin(TwinResult result) {
+  failed_twins_[0] = std::move(result.failed[0]);  // what the driver rejects holds whatever runs now
+  failed_twins_[1] = std::move(result.failed[1]);
+  // Another program runs meanwhile (or a tweak): wants_twin() asks again.
+  if (result.generation != generation_ || !program_ || showing_twin_) return false;
+  if (result.rejected_known) constants_rejected_ = std::move(result.rejected);
+  if (result.gave_up) {
+    twin_checked_ = -1;  // wanted still
+    return false;
+  }
+  if (result.current) twin_current_ = generation_;
+  if (!result.twin) return false;
+  pending_twin_ = std::move(result.twin);
+  return true;
 }
 
 std::vector<KnobValue> Scene::knobs() const {

@@ -32,9 +32,10 @@ using OnBuilt = std::function<void(const fs::path& pass, const Program&, const S
 using Cancelled = std::function<bool()>;
 
 enum class ReloadStatus {
-  Swapped,    // a new program is running
-  Unchanged,  // the combined source is the same as last attempt: nothing done
-  Failed,     // errors; the previous program (if any) keeps running
+  Swapped,       // a new program is running
+  Unchanged,     // the combined source is the same as last attempt: nothing done
+  Failed,        // errors; the previous program (if any) keeps running
+  NeedsCompile,  // prepare_without_compiling(): the save needs glslang and the driver; nothing changed
 };
 
 // Preprocesses and validates with glslang: all that `check` does, no GL.
@@ -59,6 +60,13 @@ class Scene {
   // The exact build of a tweak (only it: the picture on screen is right)
   // is put off where `cancelled` says so, before each stage, as Unchanged.
   ReloadStatus prepare(const Cancelled& cancelled = {});
+  // prepare() for a save that needs no compile: a number edit the twin
+  // shows, a text built before (the cache), a comment edit, a broken
+  // include, the text of the tweak on screen (Unchanged: its exact program
+  // is the background build's). Anything else is NeedsCompile, and the
+  // scene is as it was. It reads no GL, so the window calls it while a
+  // background build runs.
+  ReloadStatus prepare_without_compiling();
   // Hands the program prepare() compiled anew, if it did, to `on_built`
   // (timed as times().warm). Apart from prepare() so that a project warms
   // its passes up in the order it draws them.
@@ -94,6 +102,72 @@ class Scene {
   // driver's compile, and before the warm-up.
   bool prepare_twin(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
   void commit_twin();
+
+  // A build that nobody waits for (a tweak's exact program, a twin), in
+  // three steps, so that the scene can take a save while it runs (the
+  // window shows a number edit at once, not after the build's compile): a
+  // job, taken on the scene's thread, copies what the build reads; the
+  // build runs the job on any thread whose GL context shares the scene's
+  // objects, and touches no scene; the scene takes the result back on its
+  // own thread, and keeps of it only what still holds once it has moved on
+  // (a program for a text no longer shown goes to the cache).
+  struct Built {
+    std::string text;
+    Program program;
+    Source source;
+    std::string active;  // see active_code()
+  };
+  struct Twin {
+    LiftScope scope;
+    std::string code;  // lexing::code_only of its skeleton: the texts it can show (LiftedLiterals)
+    Program program;
+    std::vector<KnobValue> knobs;  // WithConstants: as its source has them, a lifted value by its name there
+  };
+  struct ExactJob {  // the exact program of the tweak on screen
+    fs::path path;
+    Source source;
+    int generation = 0;
+  };
+  struct ExactResult {
+    fs::path path;
+    int generation = 0;
+    bool put_off = false;  // `cancelled` said so, before a stage
+    std::optional<Built> built;
+    Diagnostics diagnostics;  // its warnings, or why it failed
+    ReloadTimes times;
+  };
+  struct TwinJob {
+    fs::path path;
+    Source source;  // the running program's
+    fs::path shaderlib_dir;
+    std::optional<LiftScope> scope;  // the twin there is, and its code
+    std::string code;
+    std::string failed[2];  // failed_twins_
+    int generation = 0;
+  };
+  struct TwinResult {
+    fs::path path;
+    int generation = 0;
+    bool current = false;  // the twin there is serves the running program
+    bool gave_up = false;  // `cancelled` said so: wanted still
+    std::optional<Twin> twin;
+    std::string failed[2];
+    bool rejected_known = false;  // whether `rejected` says anew why the constants compile
+    std::optional<Diagnostic> rejected;
+  };
+  // While tweaked(): the build of the exact program for the text on screen.
+  std::optional<ExactJob> exact_job() const;
+  static ExactResult build_exact(const ExactJob& job, const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  // Swapped: the exact program is ready to commit(). Failed: its errors are
+  // the diagnostics, and the tweak stays. Unchanged: put off, or for a text
+  // no longer shown.
+  ReloadStatus take_exact(ExactResult result);
+  // When wants_twin(): the build of the running program's twin (marks the
+  // twin looked at, as prepare_twin() does).
+  std::optional<TwinJob> twin_job();
+  static TwinResult build_twin(const TwinJob& job, const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  // True: a twin is ready to commit_twin().
+  bool take_twin(TwinResult result);
   // Why a constant's number compiles, not tweaked: the driver's first error
   // for the twin that makes the constants variables (an int const made from
   // a float const, say). None when that twin was built, or has no constants.
@@ -131,22 +205,10 @@ class Scene {
   int generation_ = 0;
   ReloadTimes times_;
   // Programs built before, by final text, oldest first; at most kCacheSize.
-  struct Built {
-    std::string text;
-    Program program;
-    Source source;
-    std::string active;  // see active_code()
-  };
   static constexpr size_t kCacheSize = 8;
   std::vector<Built> cache_;
   std::optional<Built> pending_;  // prepared, not yet committed
   bool pending_is_new_ = false;   // compiled by the latest prepare(), not warmed up yet
-  struct Twin {
-    LiftScope scope;
-    std::string code;  // lexing::code_only of its skeleton: the texts it can show (LiftedLiterals)
-    Program program;
-    std::vector<KnobValue> knobs;  // WithConstants: as its source has them, a lifted value by its name there
-  };
   std::optional<Twin> twin_, pending_twin_;
   struct Tweak {
     Source source;
@@ -162,6 +224,16 @@ class Scene {
   std::optional<Diagnostic> constants_rejected_;
   Diagnostics pending_diagnostics_;
   void cache(Built built);
+  ReloadStatus prepare(const Cancelled& cancelled, bool compile);
+  // glslang's validation of `source`, then the driver's compile and link,
+  // each stage timed in `times`; `put_off` is asked before each.
+  struct Compiled {
+    std::optional<Program> program;
+    Diagnostics diagnostics;  // the errors, or else the warnings
+    std::string active;       // see active_code()
+    bool put_off = false;
+  };
+  static Compiled compile(const Source& source, ReloadTimes* times, const std::function<bool()>& put_off);
 };
 
 }  // namespace rm

@@ -171,6 +171,51 @@ TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
   EXPECT_EQ(at(frame(4), 0, 0), glm::vec4(6, 10, 0, 1)) << "both new: A adds 2, B is 10";
 }
 
+// A tweak's exact programs, built as jobs in the background, while a save
+// to one pass is shown without compiling: that pass keeps its new tweak,
+// the other takes its exact program; a code edit is left for the builder.
+TEST_F(Passes, ExactBuildsOfAProjectKeepOnlyWhatTheSavesMeanwhileLeftCurrent) {
+  const std::string buffer = "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25); }\n";
+  const std::string image = "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                            "void mainImage(out vec4 c, in vec2 f) { c = vec4(texelFetch(iChannel0, ivec2(f), 0).x, 0.5, 0, 1); }\n";
+  write_file(dir_ / "buffer_a.frag", buffer);
+  write_file(dir_ / "image.frag", image);
+  Project& project = load("image.frag");
+  ASSERT_TRUE(project.prepare_twins());
+  project.commit_twins();
+  auto saved = [&](const std::string& b, const std::string& i) {
+    write_file(dir_ / "buffer_a.frag", b);
+    write_file(dir_ / "image.frag", i);
+  };
+  auto with = [](std::string text, const std::string& from, const std::string& to) {
+    return text.replace(text.find(from), from.size(), to);
+  };
+  saved(with(buffer, "0.25", "0.75"), with(image, "0.5, 0", "0.125, 0"));
+  ASSERT_EQ(project.prepare_without_compiling(), ReloadStatus::Swapped);
+  project.commit();
+  ASSERT_TRUE(project.tweaked());
+  const std::vector<Scene::ExactJob> jobs = project.exact_jobs();
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs.front().path, dir_ / "buffer_a.frag") << "in draw order";
+
+  // Saved while the jobs run: a code edit waits for the builder, a number edit of the image does not.
+  saved(with(buffer, "vec4(0.25)", "vec4(0.25 + f.x)"), with(image, "0.5, 0", "0.125, 0"));
+  EXPECT_EQ(project.prepare_without_compiling(), ReloadStatus::NeedsCompile);
+  EXPECT_TRUE(project.diagnostics().empty()) << join(project.diagnostics());
+  saved(with(buffer, "0.25", "0.75"), with(image, "0.5, 0", "0.375, 0"));
+  ASSERT_EQ(project.prepare_without_compiling(), ReloadStatus::Swapped);
+  project.commit();
+  const int generation = project.generation();
+
+  ASSERT_EQ(project.take_exact(Project::build_exact(jobs)), ReloadStatus::Swapped);
+  project.commit();
+  EXPECT_EQ(project.generation(), generation + 1);
+  EXPECT_EQ(project.rebuilt(), (std::vector<fs::path>{dir_ / "buffer_a.frag"}));
+  EXPECT_FALSE(project.passes().front().scene->tweaked()) << "the buffer's exact program";
+  EXPECT_TRUE(project.image().scene->tweaked()) << "the image's latest tweak";
+  EXPECT_EQ(at(frame(0), 0, 0), glm::vec4(0.75f, 0.375f, 0, 1));
+}
+
 // The window builds a reload on another thread: prepare() must leave the
 // running graph drawing as it was until commit() swaps it.
 // What llvmpipe's code for a pass depends on in a texture it reads: the

@@ -195,6 +195,127 @@ TEST_F(TweakGpu, ATweaksExactBuildIsPutOffWhenCancelledAndOnlyIt) {
   EXPECT_EQ(scene.prepare([] { return true; }), ReloadStatus::Swapped);
 }
 
+// The window builds a tweak's exact program in the background as a job on
+// copies, and shows a number edit saved meanwhile at once: the job's
+// program, for a text no longer shown, goes to the cache, not on screen.
+TEST_F(TweakGpu, ANumberEditDuringTheExactBuildIsShownAtOnceAndTheBuildIsCached) {
+  const auto path = dir_ / "scene.frag";
+  Scene scene(path, {});
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path));
+  const std::string first = with(kScene, "0.125", "0.375");
+  write_file(path, first);
+  ASSERT_EQ(scene.prepare_without_compiling(), ReloadStatus::Swapped);
+  scene.commit();
+  ASSERT_TRUE(scene.tweaked());
+  const std::optional<Scene::ExactJob> job = scene.exact_job();
+  ASSERT_TRUE(job);
+  EXPECT_EQ(job->source.text, scene.source().text);
+
+  write_file(path, with(kScene, "0.125", "0.625"));  // saved while the job runs
+  ASSERT_EQ(scene.prepare_without_compiling(), ReloadStatus::Swapped);
+  EXPECT_EQ(scene.times().driver, 0.0);
+  scene.commit();
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.625f, 1e-6f);
+
+  bool warmed = false;
+  Scene::ExactResult result =
+      Scene::build_exact(*job, [&](const fs::path& pass, const Program&, const Source&) { warmed = pass == path; });
+  EXPECT_TRUE(warmed);
+  ASSERT_TRUE(result.built);
+  EXPECT_GT(result.times.driver, 0.0);
+  EXPECT_EQ(scene.take_exact(std::move(result)), ReloadStatus::Unchanged) << "for a text no longer shown";
+  EXPECT_TRUE(scene.tweaked());
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.625f, 1e-6f);
+
+  // Its text saved again comes from the cache: its exact program, no compile.
+  write_file(path, first);
+  ASSERT_EQ(scene.prepare_without_compiling(), ReloadStatus::Swapped);
+  scene.commit();
+  EXPECT_FALSE(scene.tweaked());
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.375f, 1e-6f);
+}
+
+TEST_F(TweakGpu, AnExactBuildStillCurrentIsCommittedAndAPutOffOneChangesNothing) {
+  const auto path = dir_ / "scene.frag";
+  Scene scene(path, {});
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path));
+  EXPECT_FALSE(scene.exact_job()) << "no tweak on screen";
+  write_file(path, with(kScene, "0.125", "0.375"));
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  ASSERT_TRUE(scene.tweaked());
+  const std::optional<Scene::ExactJob> job = scene.exact_job();
+  ASSERT_TRUE(job);
+  for (int stage = 1; stage <= 3; ++stage) {  // before glslang, the driver, the warm-up
+    int asked = 0;
+    bool warmed = false;
+    Scene::ExactResult put_off = Scene::build_exact(
+        *job, [&](const fs::path&, const Program&, const Source&) { warmed = true; }, [&] { return ++asked >= stage; });
+    EXPECT_TRUE(put_off.put_off) << stage;
+    EXPECT_FALSE(warmed) << stage;
+    EXPECT_EQ(scene.take_exact(std::move(put_off)), ReloadStatus::Unchanged) << stage;
+    EXPECT_TRUE(scene.tweaked());
+  }
+  ASSERT_EQ(scene.take_exact(Scene::build_exact(*job)), ReloadStatus::Swapped);
+  scene.commit();
+  EXPECT_FALSE(scene.tweaked());
+  EXPECT_EQ(scene.generation(), 3);
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.375f, 1e-6f);
+  EXPECT_EQ(scene.reload(), ReloadStatus::Unchanged);
+}
+
+// What the window may do while a background build runs: a code edit needs
+// the builder, and asking leaves the scene as it was; a broken include
+// fails at once, and an exact build that ends after it is not shown.
+TEST_F(TweakGpu, WithoutCompilingACodeEditIsLeftForTheBuilderAndABrokenSaveFails) {
+  const auto path = dir_ / "scene.frag";
+  Scene scene(path, {});
+  ASSERT_NO_FATAL_FAILURE(load_with_twin(scene, path));
+  write_file(path, with(kScene, "0.125", "0.375"));
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  const std::optional<Scene::ExactJob> job = scene.exact_job();
+  ASSERT_TRUE(job);
+
+  write_file(path, with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"));
+  EXPECT_EQ(scene.prepare_without_compiling(), ReloadStatus::NeedsCompile);
+  EXPECT_EQ(scene.generation(), 2);
+  EXPECT_TRUE(scene.tweaked());
+  EXPECT_TRUE(scene.diagnostics().empty());
+
+  write_file(path, "#include \"missing.glsl\"\n" + std::string(kScene));
+  EXPECT_EQ(scene.prepare_without_compiling(), ReloadStatus::Failed);
+  ASSERT_FALSE(scene.diagnostics().empty());
+  EXPECT_NE(scene.diagnostics().front().message.find("missing.glsl"), std::string::npos);
+  EXPECT_EQ(scene.take_exact(Scene::build_exact(*job)), ReloadStatus::Unchanged) << "the save after it failed";
+  EXPECT_FALSE(scene.diagnostics().empty()) << "its errors stay";
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.375f, 1e-6f);
+
+  write_file(path, with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"));
+  ASSERT_EQ(scene.prepare(), ReloadStatus::Swapped) << "the builder compiles it";
+  scene.commit();
+  EXPECT_NEAR(render(scene, {4, 4}).pixel(0, 0)[2], 0.125f + 3.5f / 4.0f, 1e-6f);  // the top row's uv.y
+}
+
+// A twin job for a program no longer running is dropped, and wanted again.
+TEST_F(TweakGpu, ATwinBuiltForAProgramNoLongerRunningIsDropped) {
+  const auto path = dir_ / "scene.frag";
+  write_file(path, kScene);
+  Scene scene(path, {});
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  const std::optional<Scene::TwinJob> job = scene.twin_job();
+  ASSERT_TRUE(job);
+  EXPECT_FALSE(scene.wants_twin());
+  write_file(path, with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"));  // built meanwhile
+  ASSERT_EQ(scene.reload(), ReloadStatus::Swapped);
+  Scene::TwinResult result = Scene::build_twin(*job);
+  ASSERT_TRUE(result.twin);
+  EXPECT_FALSE(scene.take_twin(std::move(result)));
+  EXPECT_TRUE(scene.wants_twin());
+  ASSERT_TRUE(scene.prepare_twin());
+  scene.commit_twin();
+  write_file(path, with(with(kScene, "0.125, 1.0", "0.125 + uv.y, 1.0"), "0.25", "0.5"));
+  EXPECT_EQ(scene.prepare_without_compiling(), ReloadStatus::Swapped) << "a tweak of the running program's twin";
+}
+
 TEST_F(TweakGpu, ABrokenSaveBetweenTweaksKeepsTheTweakOnScreenAndItsMendIsATweak) {
   const auto path = dir_ / "scene.frag";
   Scene scene(path, {});
