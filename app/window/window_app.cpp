@@ -118,12 +118,12 @@ class WindowApp {
       // needs the loop (idle_wait_s). A picture drawn in tiles comes back
       // here between slices of tiles.
       auto busy = [&] {
-        return redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
+        return load_after_tile_ || redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
                (refining() && !builder_.busy()) || shot_requested_ || (!shots_.empty() && !holds_shots());
       };
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(idle_wait_s());
-      if (watcher_->changed()) load();
+      if (watcher_->changed() || std::exchange(load_after_tile_, false)) load();
       wake_on_save_.rearm();
       // Ctrl-C in the terminal, or a kill: quit as Q does, so that a take
       // being recorded is written and no half file is left.
@@ -212,9 +212,24 @@ class WindowApp {
 
   // A reload with the options as they are now (-D, the view). It is built on
   // the builder's thread while the running program keeps drawing; one asked
-  // for during a build starts when that one is done.
-  void load() {
+  // for during a build starts when that one is done. During a background
+  // build (a twin, a tweak's exact program), which works on copies (Scene's
+  // jobs), a save that needs no compile (a number edit the twin shows, a
+  // text built before) is shown at once instead; one that needs a compile
+  // puts that build off. `show_now` false: from within a tile, whose
+  // picture showing it would change under it, so the loop loads again once
+  // the tile is done.
+  void load(bool show_now = true) {
     if (builder_.busy()) {
+      if (background_build_) {
+        project_.set_options(source_, with_view(source_, view_));
+        const ReloadStatus status = project_.prepare_without_compiling();
+        if (status != ReloadStatus::NeedsCompile) {
+          if (show_now) show_without_compiling(status);
+          else load_after_tile_ = true;
+          return;
+        }
+      }
       load_again_ = true;
       if (background_build_) builder_.cancel();  // a save goes before a twin, or a tweak's exact program
       return;
@@ -238,11 +253,23 @@ class WindowApp {
     });
   }
 
+  // What project_.prepare_without_compiling() gave, shown.
+  void show_without_compiling(ReloadStatus status) {
+    if (options_.verbose)
+      std::cerr << "raymarching: shown without compiling during a background build at " << steady_ns() << '\n';
+    building_source_ = source_;
+    if (status == ReloadStatus::Swapped) {
+      project_.commit();
+      builder_.cancel();  // the background build was for the picture shown before
+    }
+    loaded(status);
+  }
+
   // A finished build: its program on screen, or its twins kept; then the
   // build of a save that came meanwhile.
   void take_build(ReloadStatus built) {
     if (std::exchange(twin_build_, false)) {
-      if (built == ReloadStatus::Swapped) project_.commit_twins();
+      if (project_.take_twins(std::exchange(twin_results_, {}))) project_.commit_twins();
       if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
       // Unchanged but not cancelled: the twins were current already, or
       // there is nothing to lift, or the driver rejected them.
@@ -254,13 +281,20 @@ class WindowApp {
                   << " for generation " << project_.generation() << " in "
                   << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
       if (options_.verbose) log_constants_compiled();
-    } else {
-      if (built == ReloadStatus::Swapped) project_.commit();
-      graph_.hand_over(std::exchange(images_read_, {}));
-      if (background_build_ && builder_.cancelled() && built == ReloadStatus::Unchanged) {
+    } else if (std::exchange(exact_build_, false)) {
+      const bool put_off = builder_.cancelled();
+      const ReloadStatus status = project_.take_exact(std::exchange(exact_results_, {}));
+      if (status == ReloadStatus::Swapped) project_.commit();
+      if (put_off && status == ReloadStatus::Unchanged) {
         settle_tried_ = -1;  // put off: built again once saves pause
         if (options_.verbose) std::cerr << "raymarching: the tweak's exact program put off at " << steady_ns() << '\n';
       }
+      taking_exact_ = true;
+      loaded(status);
+      taking_exact_ = false;
+    } else {
+      if (built == ReloadStatus::Swapped) project_.commit();
+      graph_.hand_over(std::exchange(images_read_, {}));
       loaded(built);
     }
     background_build_ = false;
@@ -317,17 +351,29 @@ class WindowApp {
   }
   void background_build() {
     if (!wants_background_build() || steady_ns() - last_swap_ns_ < kBackgroundDelayNs) return;
+    // Each runs on copies (Scene's jobs), so that a save meanwhile that needs
+    // no compile is shown at once (show_without_compiling).
     if (project_.tweaked() && settle_tried_ != project_.generation()) {
       settle_tried_ = project_.generation();
-      background_build_ = true;
-      load();
+      background_build_ = exact_build_ = true;
+      if (options_.verbose)
+        std::cerr << "raymarching: building the tweak's exact program, generation " << project_.generation() + 1
+                  << ", at " << steady_ns() << '\n';
+      builder_.start([this, jobs = project_.exact_jobs(), warm = warm_up_hook(graph_.images_held())] {
+        exact_results_ = Project::build_exact(jobs, warm, [this] { return builder_.cancelled(); });
+        const bool any = std::any_of(exact_results_.begin(), exact_results_.end(),
+                                     [](const Scene::ExactResult& r) { return r.built.has_value(); });
+        return any ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
+      });
     } else if (project_.wants_twins()) {
       background_build_ = twin_build_ = true;
       twins_started_ns_ = steady_ns();
       if (options_.verbose) std::cerr << "raymarching: building twins at " << twins_started_ns_ << '\n';
-      builder_.start([this, warm = warm_up_hook(graph_.images_held())] {
-        return project_.prepare_twins(warm, [this] { return builder_.cancelled(); }) ? ReloadStatus::Swapped
-                                                                                    : ReloadStatus::Unchanged;
+      builder_.start([this, jobs = project_.twin_jobs(), warm = warm_up_hook(graph_.images_held())] {
+        twin_results_ = Project::build_twins(jobs, warm, [this] { return builder_.cancelled(); });
+        const bool any = std::any_of(twin_results_.begin(), twin_results_.end(),
+                                     [](const Scene::TwinResult& r) { return r.twin.has_value(); });
+        return any ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
       });
     }
   }
@@ -353,7 +399,7 @@ class WindowApp {
     model_.has_picture = project_.ready();
     // A tweak's exact program draws what its twin drew: the picture in
     // progress, or its refinement, goes on.
-    const bool same_picture = status == ReloadStatus::Swapped && background_build_ && !project_.tweaked();
+    const bool same_picture = status == ReloadStatus::Swapped && taking_exact_;
     if (status == ReloadStatus::Swapped) {
       shown_source_ = building_source_;
       take_.reloaded(shown_source_, project_);
@@ -363,7 +409,7 @@ class WindowApp {
       // the new one costs is unknown until a first small tile has measured it
       // (a tweak's twin, or its exact program, costs what the last did).
       if (!same_picture) drawing_.reset();
-      if (!project_.tweaked() && !background_build_) {
+      if (!project_.tweaked() && !taking_exact_) {
         budget_.forget();
         buffer_cost_.clear();
         last_moving_done_ = 0;
@@ -754,7 +800,7 @@ class WindowApp {
     GLsync done = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     GLbitfield flush = GL_SYNC_FLUSH_COMMANDS_BIT;
     while (glClientWaitSync(done, std::exchange(flush, 0), kSaveCheckNs) == GL_TIMEOUT_EXPIRED) {
-      if (watcher_->changed()) load();
+      if (watcher_->changed()) load(false);
       if (load_again_ && twin_build_)
         if (const std::optional<ReloadStatus> built = builder_.finished()) take_build(*built);
     }
@@ -1170,8 +1216,15 @@ class WindowApp {
   // before them.
   Builder builder_;
   bool load_again_ = false;  // a reload asked for while the builder was busy
+  bool load_after_tile_ = false;  // ... while it built in the background, seen from within a tile
   bool background_build_ = false;  // the builder's build is background_build()'s
   bool twin_build_ = false;        // ... and builds twins
+  bool exact_build_ = false;       // ... or a tweak's exact program
+  bool taking_exact_ = false;      // loaded() shows that exact program: the picture stays
+  // The background build's results, which its thread writes and this one
+  // takes once it has finished.
+  std::vector<Scene::TwinResult> twin_results_;
+  std::vector<Scene::ExactResult> exact_results_;
   int settle_tried_ = -1;          // the generation whose tweak's exact program was built
   long long last_swap_ns_ = 0, twins_started_ns_ = 0;
   long long last_present_ns_ = 0;  // the last glfwSwapBuffers
