@@ -17,11 +17,10 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
-from harness import save_by_rename, wait_for  # noqa: E402
+from harness import save_by_rename, scene_copy, wait_for  # noqa: E402
 from reload_examples import FIRST_DRAW, RELOAD  # noqa: E402  the -v lines it reads too
 
 COMPILED_MS = 20  # a first draw that finds the code takes 2 to 12 ms here
@@ -34,13 +33,7 @@ def main():
     parser.add_argument("edits", type=int, nargs="?", default=12)
     parser.add_argument("--busy", type=int, default=0)
     args = parser.parse_args()
-    work = tempfile.mkdtemp(prefix="rm-cache-race-")
-    folder = os.path.join(work, "scene")
-    shutil.copytree(os.path.dirname(os.path.abspath(args.scene)), folder, symlinks=True)
-    copy = os.path.join(folder, os.path.basename(args.scene))
-    original = open(copy).read()
-    err = os.path.join(work, "stderr.txt")
-    env = dict(os.environ, MESA_SHADER_CACHE_DIR=os.path.join(work, "mesa-cache"))
+    work, copy, original, err, env = scene_copy(args.scene, "rm-cache-race-")
     busy = [subprocess.Popen(["sh", "-c", "while :; do :; done"]) for _ in range(args.busy)]
     with open(err, "w") as e:
         window = subprocess.Popen([os.path.abspath(args.binary), copy, "--no-ui", "-v", "--size", "320x180"],

@@ -16,15 +16,13 @@ and their median.
 import argparse
 import os
 import re
-import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
-from harness import save_by_rename, wait_for  # noqa: E402
+from harness import save_by_rename, scene_copy, wait_for  # noqa: E402
 from reload_examples import LAST_NUMBER  # noqa: E402  the same number edit
 
 TWEAKED = re.compile(r"reload ok generation (\d+) \(tweaked:[^\n]* at (\d+)")
@@ -37,16 +35,10 @@ def main():
     parser.add_argument("edits", type=int, nargs="?", default=8)
     parser.add_argument("--pause", type=float, default=1.2)
     args = parser.parse_args()
-    work = tempfile.mkdtemp(prefix="rm-number-pace-")
-    folder = os.path.join(work, "scene")
-    shutil.copytree(os.path.dirname(os.path.abspath(args.scene)), folder, symlinks=True)
-    copy = os.path.join(folder, os.path.basename(args.scene))
-    original = open(copy).read()
-    err = os.path.join(work, "stderr.txt")
-    env = dict(os.environ, MESA_SHADER_CACHE_DIR=os.path.join(work, "mesa-cache"))
+    work, copy, original, err, env = scene_copy(args.scene, "rm-number-pace-")
     with open(err, "w") as e:
         proc = subprocess.Popen([os.path.abspath(args.binary), copy, "--no-ui", "-v"], stdout=subprocess.DEVNULL, stderr=e,
-                                cwd=folder, env=env)
+                                cwd=os.path.dirname(copy), env=env)
     log = lambda: open(err).read()  # noqa: E731
     times = []
     try:

@@ -96,6 +96,19 @@ def save_by_rename(path, text):
     os.rename(tmp, path)
 
 
+def scene_copy(scene, prefix):
+    """A new folder holding a copy of `scene`'s folder, for a window to open
+    and edit while the repository stays as it is: (the folder, the copied
+    scene, its text, a path for the window's stderr, the environment that
+    gives it an empty Mesa shader cache of its own)."""
+    work = tempfile.mkdtemp(prefix=prefix)
+    folder = os.path.join(work, "scene")
+    shutil.copytree(os.path.dirname(os.path.abspath(scene)), folder, symlinks=True)
+    copy = os.path.join(folder, os.path.basename(scene))
+    env = dict(os.environ, MESA_SHADER_CACHE_DIR=os.path.join(work, "mesa-cache"))
+    return work, copy, open(copy).read(), os.path.join(work, "stderr.txt"), env
+
+
 def save_in_place(path, text):
     """As nano and many autosaves do: truncate and write the same file."""
     with open(path, "w") as f:
