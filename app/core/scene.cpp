@@ -140,8 +140,7 @@ Scene::ExactResult Scene::build_exact(const ExactJob& job, const OnBuilt& on_bui
   out.generation = job.generation;
   auto put_off = [&] { return out.put_off = cancelled && cancelled(); };
   if (put_off()) return out;
-  Compiled built = compile(job.source, &out.times, put_off);
-  out.put_off = built.put_off;
+  Compiled built = compile(job.source, &out.times, put_off);  // put_off() marks `out` put off
   out.diagnostics = std::move(built.diagnostics);
   if (!built.program || put_off()) return out;
   const auto start = std::chrono::steady_clock::now();

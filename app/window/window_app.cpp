@@ -221,7 +221,7 @@ class WindowApp {
   // the tile is done.
   void load(bool show_now = true) {
     if (builder_.busy()) {
-      if (background_build_) {
+      if (background_building()) {
         project_.set_options(source_, with_view(source_, view_));
         const ReloadStatus status = project_.prepare_without_compiling();
         if (status != ReloadStatus::NeedsCompile) {
@@ -231,7 +231,7 @@ class WindowApp {
         }
       }
       load_again_ = true;
-      if (background_build_) builder_.cancel();  // a save goes before a twin, or a tweak's exact program
+      if (background_building()) builder_.cancel();  // a save goes before a twin, or a tweak's exact program
       return;
     }
     project_.set_options(source_, with_view(source_, view_));
@@ -297,7 +297,6 @@ class WindowApp {
       graph_.hand_over(std::exchange(images_read_, {}));
       loaded(built);
     }
-    background_build_ = false;
     shots_wait_for_build_ = false;
     if (std::exchange(load_again_, false)) load();
   }
@@ -355,7 +354,7 @@ class WindowApp {
     // no compile is shown at once (show_without_compiling).
     if (project_.tweaked() && settle_tried_ != project_.generation()) {
       settle_tried_ = project_.generation();
-      background_build_ = exact_build_ = true;
+      exact_build_ = true;
       if (options_.verbose)
         std::cerr << "raymarching: building the tweak's exact program, generation " << project_.generation() + 1
                   << ", at " << steady_ns() << '\n';
@@ -366,7 +365,7 @@ class WindowApp {
         return any ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
       });
     } else if (project_.wants_twins()) {
-      background_build_ = twin_build_ = true;
+      twin_build_ = true;
       twins_started_ns_ = steady_ns();
       if (options_.verbose) std::cerr << "raymarching: building twins at " << twins_started_ns_ << '\n';
       builder_.start([this, jobs = project_.twin_jobs(), warm = warm_up_hook(graph_.images_held())] {
@@ -1174,8 +1173,10 @@ class WindowApp {
   // that it shows the scene as saved, but for no build after that one: in a
   // storm of saves it would wait for the storm's end.
   bool holds_shots() const { return shots_wait_for_build_ && waiting_for_build(); }
+  // The builder's build is background_build()'s: twins, or a tweak's exact program.
+  bool background_building() const { return twin_build_ || exact_build_; }
   // A build of a save is under way (not one in the background).
-  bool waiting_for_build() const { return builder_.busy() && !background_build_; }
+  bool waiting_for_build() const { return builder_.busy() && !background_building(); }
   // How long the loop may sleep with nothing to draw. A save wakes it at
   // once through the watcher's descriptor. A polling watcher, a burst of
   // saves still settling, a build under way (whose moving picture is due
@@ -1217,9 +1218,8 @@ class WindowApp {
   Builder builder_;
   bool load_again_ = false;  // a reload asked for while the builder was busy
   bool load_after_tile_ = false;  // ... while it built in the background, seen from within a tile
-  bool background_build_ = false;  // the builder's build is background_build()'s
-  bool twin_build_ = false;        // ... and builds twins
-  bool exact_build_ = false;       // ... or a tweak's exact program
+  bool twin_build_ = false;   // the builder's build is background_build()'s, of twins
+  bool exact_build_ = false;  // ... or of a tweak's exact program
   bool taking_exact_ = false;      // loaded() shows that exact program: the picture stays
   // The background build's results, which its thread writes and this one
   // takes once it has finished.
