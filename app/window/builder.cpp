@@ -9,7 +9,8 @@
 
 namespace rm {
 
-Builder::Builder(GLFWwindow* window) {
+void Builder::open(GLFWwindow* window) {
+  if (context_) return;
   // The window's context hints (version, profile) still hold.
   glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
   context_ = glfwCreateWindow(1, 1, "raymarching builder", nullptr, window);

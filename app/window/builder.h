@@ -1,8 +1,9 @@
-// Builder: runs a reload's build (Project::prepare: the preprocessor,
-// glslang, the driver's compile and link, a warm-up draw) on a thread of its
-// own, in the GL context of a hidden window that shares the window's
-// objects. The window keeps drawing the running program meanwhile, and
-// commits the new one when the build has finished.
+// Builder: runs a build (a reload's Project::prepare: the preprocessor,
+// glslang, the driver's compile and link, a warm-up draw; or a background
+// job's) on a thread of its own, in the GL context of a hidden window that
+// shares the window's objects. The window keeps drawing the running program
+// meanwhile, and commits the new one when the build has finished. The
+// window has two: one for saves, one for the builds nobody waits for.
 #pragma once
 #include <atomic>
 #include <functional>
@@ -18,7 +19,10 @@ namespace rm {
 class Builder {
  public:
   // On the main thread, with `window`'s context current.
-  explicit Builder(GLFWwindow* window);
+  explicit Builder(GLFWwindow* window) { open(window); }
+  // One not available() until open(): its contexts can be made later.
+  Builder() = default;
+  void open(GLFWwindow* window);
   ~Builder();  // waits for a build under way
   Builder(const Builder&) = delete;
   Builder& operator=(const Builder&) = delete;

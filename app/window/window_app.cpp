@@ -96,7 +96,7 @@ class WindowApp {
 
   // A build still running once run() has returned: the driver may compile
   // a large shader for a minute more.
-  bool building() const { return builder_.running(); }
+  bool building() const { return builder_.running() || background_.running(); }
 
   int run() {
     for (size_t i = 0; i < options_.channels.size(); ++i) {
@@ -112,6 +112,9 @@ class WindowApp {
     // held a window that could not be quit for a minute).
     watcher_->watch({options_.scene});
     load();
+    // Made while the first program builds: its two contexts took about 50
+    // ms, which the first picture waited for when they were made before.
+    background_.open(window_);
     while (!glfwWindowShouldClose(window_) && !quit_) {
       // A picture that cannot change is drawn once: then sleep until an event
       // or a save (wake_on_save_), or until the watcher or a background build
@@ -119,7 +122,7 @@ class WindowApp {
       // here between slices of tiles.
       auto busy = [&] {
         return load_after_tile_ || redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
-               (refining() && !builder_.busy()) || shot_requested_ || (!shots_.empty() && !holds_shots());
+               (refining() && builders_idle()) || shot_requested_ || (!shots_.empty() && !holds_shots());
       };
       if (busy()) glfwPollEvents();
       else glfwWaitEventsTimeout(idle_wait_s());
@@ -129,7 +132,11 @@ class WindowApp {
       // being recorded is written and no half file is left.
       if (stop_signals_.received()) quit_ = true;
       if (const std::optional<ReloadStatus> built = builder_.finished()) take_build(*built);
-      if (!builder_.busy()) background_build();
+      // A background build is taken with no save's build under way: that
+      // one changes the project its results are checked against.
+      if (!builder_.busy())
+        if (const std::optional<ReloadStatus> built = background_.finished()) take_background(*built);
+      if (builders_idle()) background_build();
       if (busy() && !quit_) frame(redraw_needed());
     }
     // Gone from the screen at once: a build under way, the teardown and the
@@ -212,29 +219,30 @@ class WindowApp {
 
   // A reload with the options as they are now (-D, the view). It is built on
   // the builder's thread while the running program keeps drawing; one asked
-  // for during a build starts when that one is done. During a background
-  // build (a twin, a tweak's exact program), which works on copies (Scene's
-  // jobs), a save that needs no compile (a number edit the twin shows, a
-  // text built before) is shown at once instead; one that needs a compile
-  // puts that build off. `show_now` false: from within a tile, whose
-  // picture showing it would change under it, so the loop loads again once
-  // the tile is done.
+  // for during a save's build starts when that one is done. A background
+  // build (a twin, a tweak's exact program) works on copies (Scene's jobs)
+  // on a builder of its own. A save meanwhile that needs no compile (a
+  // number edit the twin shows, a text built before) is shown at once; one
+  // that needs a compile is built at once, beside the background build's
+  // stage under way, which puts that build off (a code edit of tori waited
+  // for it). `show_now` false: from within a tile, whose picture showing it
+  // would change under it, so the loop loads again once the tile is done.
   void load(bool show_now = true) {
     if (builder_.busy()) {
-      if (background_building()) {
-        project_.set_options(source_, with_view(source_, view_));
-        const ReloadStatus status = project_.prepare_without_compiling();
-        if (status != ReloadStatus::NeedsCompile) {
-          if (show_now) show_without_compiling(status);
-          else load_after_tile_ = true;
-          return;
-        }
-      }
       load_again_ = true;
-      if (background_building()) builder_.cancel();  // a save goes before a twin, or a tweak's exact program
+      background_.cancel();  // it would be built for a picture about to go
       return;
     }
     project_.set_options(source_, with_view(source_, view_));
+    if (background_building()) {
+      const ReloadStatus status = project_.prepare_without_compiling();
+      if (status != ReloadStatus::NeedsCompile) {
+        if (show_now) show_without_compiling(status);
+        else load_after_tile_ = true;
+        return;
+      }
+      background_.cancel();  // a save goes before a twin, or a tweak's exact program
+    }
     building_source_ = source_;
     if (!builder_.available()) {
       loaded(project_.reload());
@@ -242,11 +250,11 @@ class WindowApp {
     }
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
     ImageTextures::HeldImages held = graph_.images_held();
-    builder_.start([this, warm = warm_up_hook(held), held = std::move(held)] {
+    builder_.start([this, warm = warm_up_hook(held, builder_, &images_read_), held = std::move(held)] {
       images_read_.clear();
       const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
       if (status != ReloadStatus::Failed) {
-        for (const ChannelSpec& spec : project_.images_read()) read_ahead(spec, held);
+        for (const ChannelSpec& spec : project_.images_read()) read_ahead(spec, held, images_read_);
         glFinish();  // complete before the window's context draws with them
       }
       return status;
@@ -260,14 +268,24 @@ class WindowApp {
     building_source_ = source_;
     if (status == ReloadStatus::Swapped) {
       project_.commit();
-      builder_.cancel();  // the background build was for the picture shown before
+      background_.cancel();  // it was for the picture shown before
     }
     loaded(status);
   }
 
-  // A finished build: its program on screen, or its twins kept; then the
-  // build of a save that came meanwhile.
+  // A save's finished build: its program on screen; then the build of a
+  // save that came meanwhile.
   void take_build(ReloadStatus built) {
+    if (built == ReloadStatus::Swapped) project_.commit();
+    graph_.hand_over(std::exchange(images_read_, {}));
+    loaded(built);
+    shots_wait_for_build_ = false;
+    if (std::exchange(load_again_, false)) load();
+  }
+
+  // A finished background build: its twins kept, or the tweak's exact
+  // program on screen, where they still hold.
+  void take_background(ReloadStatus built) {
     if (std::exchange(twin_build_, false)) {
       if (project_.take_twins(std::exchange(twin_results_, {}))) project_.commit_twins();
       if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
@@ -276,13 +294,13 @@ class WindowApp {
       if (options_.verbose)
         std::cerr << "raymarching: "
                   << (built == ReloadStatus::Swapped ? "twins built"
-                      : builder_.cancelled()         ? "twins put off"
+                      : background_.cancelled()      ? "twins put off"
                                                      : "no new twins")
                   << " for generation " << project_.generation() << " in "
                   << (steady_ns() - twins_started_ns_) / 1e6 << " ms, at " << steady_ns() << '\n';
       if (options_.verbose) log_constants_compiled();
     } else if (std::exchange(exact_build_, false)) {
-      const bool put_off = builder_.cancelled();
+      const bool put_off = background_.cancelled();
       const ReloadStatus status = project_.take_exact(std::exchange(exact_results_, {}));
       if (status == ReloadStatus::Swapped) project_.commit();
       if (put_off && status == ReloadStatus::Unchanged) {
@@ -292,13 +310,7 @@ class WindowApp {
       taking_exact_ = true;
       loaded(status);
       taking_exact_ = false;
-    } else {
-      if (built == ReloadStatus::Swapped) project_.commit();
-      graph_.hand_over(std::exchange(images_read_, {}));
-      loaded(built);
     }
-    shots_wait_for_build_ = false;
-    if (std::exchange(load_again_, false)) load();
   }
 
   // On the builder: the texture of a channel image the build binds, read
@@ -307,24 +319,27 @@ class WindowApp {
   // graph takes it. 0 where the graph's own is current, or where the file
   // cannot be read: the graph then says why, without reading it again. A
   // large image held the window for its decoding and upload (4096x4096
-  // noise: 1.2 s).
-  GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::HeldImages& held) {
+  // noise: 1.2 s). `read`: where that build keeps what it read.
+  using ImagesRead = std::vector<std::pair<ChannelSpec, ImageTextures::Entry>>;
+  static GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::HeldImages& held, ImagesRead& read) {
     if (!ImageTextures::stale(spec, held)) return 0;
-    for (const auto& [done, texture] : images_read_)
+    for (const auto& [done, texture] : read)
       if (ImageTextures::key_of(done) == ImageTextures::key_of(spec)) return texture.texture.get();
-    images_read_.emplace_back(spec, ImageTextures::read(spec));
-    return images_read_.back().second.texture.get();
+    read.emplace_back(spec, ImageTextures::read(spec));
+    return read.back().second.texture.get();
   }
 
   // Each new program is drawn once into its pass's format, with what the
   // pass reads now where its channels are bound as before, with the images
   // the graph will read anew (read ahead), and elsewhere (a new pass, a
   // channel the save changed) with textures like those it will read; and
-  // drawn so again in the builder's probe context, so that Mesa's cache
-  // holds its code before the window draws it. `held`: the graph's images
-  // as the build starts (read_ahead).
-  OnBuilt warm_up_hook(ImageTextures::HeldImages held) {
-    return [this, states = graph_.pass_states(project_), held = std::move(held)](
+  // drawn so again in the probe context of `builder`, which runs the build,
+  // so that Mesa's cache holds its code before the window draws it. `held`:
+  // the graph's images as the build starts (read_ahead). `read`: where the
+  // images it reads go; without it (a background build, which the graph
+  // takes no images from), an image the graph holds stale is stood in for.
+  OnBuilt warm_up_hook(ImageTextures::HeldImages held, Builder& builder, ImagesRead* read) {
+    return [this, &builder, read, states = graph_.pass_states(project_), held = std::move(held)](
                const fs::path& pass, const Program& program, const Source& source) {
       if (!warm_up_) return;
       const std::array<ChannelSpec, 4> channels = project_.channels_of(pass, source);
@@ -334,11 +349,11 @@ class WindowApp {
       if (now != states.end()) state.format = now->second.format;
       for (size_t c = 0; c < 4; ++c) {
         if (now != states.end() && now->second.specs[c] == channels[c]) state.channels[c] = now->second.channels[c];
-        else if (channels[c].kind == ChannelSpec::Kind::Image)
-          if (const GLuint texture = read_ahead(channels[c], held)) state.channels[c].texture = texture;
+        else if (channels[c].kind == ChannelSpec::Kind::Image && read)
+          if (const GLuint texture = read_ahead(channels[c], held, *read)) state.channels[c].texture = texture;
       }
       warm_up(program, state.format, state.channels);
-      builder_.in_probe_context([&] { warm_up(program, state.format, state.channels); });
+      builder.in_probe_context([&] { warm_up(program, state.format, state.channels); });
     };
   }
 
@@ -346,20 +361,22 @@ class WindowApp {
   // a tweak's exact program, and the twins that show the next number edit
   // at once. They leave the picture moving at its pace.
   bool wants_background_build() const {
-    return builder_.available() && ((project_.tweaked() && settle_tried_ != project_.generation()) || project_.wants_twins());
+    // Both builders: a save built in place would change the project under the background's.
+    return builder_.available() && background_.available() && ((project_.tweaked() && settle_tried_ != project_.generation()) || project_.wants_twins());
   }
   void background_build() {
     if (!wants_background_build() || steady_ns() - last_swap_ns_ < kBackgroundDelayNs) return;
-    // Each runs on copies (Scene's jobs), so that a save meanwhile that needs
-    // no compile is shown at once (show_without_compiling).
+    // Each runs on copies (Scene's jobs) on a builder of its own, so that a
+    // save meanwhile is shown at once where it needs no compile
+    // (show_without_compiling), and built at once beside it where it does.
     if (project_.tweaked() && settle_tried_ != project_.generation()) {
       settle_tried_ = project_.generation();
       exact_build_ = true;
       if (options_.verbose)
         std::cerr << "raymarching: building the tweak's exact program, generation " << project_.generation() + 1
                   << ", at " << steady_ns() << '\n';
-      builder_.start([this, jobs = project_.exact_jobs(), warm = warm_up_hook(graph_.images_held())] {
-        exact_results_ = Project::build_exact(jobs, warm, [this] { return builder_.cancelled(); });
+      background_.start([this, jobs = project_.exact_jobs(), warm = warm_up_hook(graph_.images_held(), background_, nullptr)] {
+        exact_results_ = Project::build_exact(jobs, warm, [this] { return background_.cancelled(); });
         const bool any = std::any_of(exact_results_.begin(), exact_results_.end(),
                                      [](const Scene::ExactResult& r) { return r.built.has_value(); });
         return any ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
@@ -368,8 +385,8 @@ class WindowApp {
       twin_build_ = true;
       twins_started_ns_ = steady_ns();
       if (options_.verbose) std::cerr << "raymarching: building twins at " << twins_started_ns_ << '\n';
-      builder_.start([this, jobs = project_.twin_jobs(), warm = warm_up_hook(graph_.images_held())] {
-        twin_results_ = Project::build_twins(jobs, warm, [this] { return builder_.cancelled(); });
+      background_.start([this, jobs = project_.twin_jobs(), warm = warm_up_hook(graph_.images_held(), background_, nullptr)] {
+        twin_results_ = Project::build_twins(jobs, warm, [this] { return background_.cancelled(); });
         const bool any = std::any_of(twin_results_.begin(), twin_results_.end(),
                                      [](const Scene::TwinResult& r) { return r.twin.has_value(); });
         return any ? ReloadStatus::Swapped : ReloadStatus::Unchanged;
@@ -577,7 +594,7 @@ class WindowApp {
     // one; a moving one is finished first. A new window size starts over.
     if (drawing_ && (drawing_->window != glm::ivec2(width, height) || (drawing_->resting && redraw))) drawing_.reset();
     if (!drawing_ && redraw) start_picture(width, height, true);
-    else if (!drawing_ && refining() && !builder_.busy()) start_picture(width, height, false, samples_);
+    else if (!drawing_ && refining() && builders_idle()) start_picture(width, height, false, samples_);
     // A screenshot in progress goes first: the picture waits for it, so
     // that each turn of the loop draws one slice of the budget, not two.
     if (!shots_.empty() && !holds_shots()) {
@@ -786,8 +803,7 @@ class WindowApp {
 
   // Waits for the tile just drawn, of a picture or a shot. A save that
   // comes meanwhile starts its build at once, beside the tile, not once the
-  // slice is done (a heavy shader's tile may take seconds). Twins, which
-  // change nothing on screen, are taken to make way for it; a program waits
+  // slice is done (a heavy shader's tile may take seconds); a program waits
   // for the tile's end. On the builder only: a build in place would swap
   // programs mid-picture.
   void finish_tile() {
@@ -800,8 +816,6 @@ class WindowApp {
     GLbitfield flush = GL_SYNC_FLUSH_COMMANDS_BIT;
     while (glClientWaitSync(done, std::exchange(flush, 0), kSaveCheckNs) == GL_TIMEOUT_EXPIRED) {
       if (watcher_->changed()) load(false);
-      if (load_again_ && twin_build_)
-        if (const std::optional<ReloadStatus> built = builder_.finished()) take_build(*built);
     }
     glDeleteSync(done);
   }
@@ -1173,17 +1187,18 @@ class WindowApp {
   // that it shows the scene as saved, but for no build after that one: in a
   // storm of saves it would wait for the storm's end.
   bool holds_shots() const { return shots_wait_for_build_ && waiting_for_build(); }
-  // The builder's build is background_build()'s: twins, or a tweak's exact program.
-  bool background_building() const { return twin_build_ || exact_build_; }
+  // background_build()'s build (twins, or a tweak's exact program) is under way.
+  bool background_building() const { return background_.busy(); }
   // A build of a save is under way (not one in the background).
-  bool waiting_for_build() const { return builder_.busy() && !background_building(); }
+  bool waiting_for_build() const { return builder_.busy(); }
+  bool builders_idle() const { return !builder_.busy() && !background_.busy(); }
   // How long the loop may sleep with nothing to draw. A save wakes it at
   // once through the watcher's descriptor. A polling watcher, a burst of
   // saves still settling, a build under way (whose moving picture is due
   // every kBuildFrameInterval) and a background build coming due need it
   // sooner. The cap bounds what a need not listed here would wait.
   double idle_wait_s() const {
-    if (!wake_on_save_.active() || watcher_->settling() || builder_.busy()) return 0.02;
+    if (!wake_on_save_.active() || watcher_->settling() || !builders_idle()) return 0.02;
     constexpr double kCap = 0.25;
     if (!wants_background_build()) return kCap;
     return std::clamp(double(last_swap_ns_ + kBackgroundDelayNs - steady_ns()) / 1e9, 0.001, kCap);
@@ -1211,14 +1226,15 @@ class WindowApp {
   Renderer renderer_;
   FrameGraph graph_;
   // The images the builder read for the graph its build will bind.
-  std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> images_read_;
-  // After the project, the graph and images_read_, whose textures its warm-up
-  // reads and which it writes: it is destroyed, and its thread joined,
-  // before them.
-  Builder builder_;
-  bool load_again_ = false;  // a reload asked for while the builder was busy
-  bool load_after_tile_ = false;  // ... while it built in the background, seen from within a tile
-  bool twin_build_ = false;   // the builder's build is background_build()'s, of twins
+  ImagesRead images_read_;
+  // After the project, the graph and images_read_, whose textures their
+  // warm-ups read and which the first writes: they are destroyed, and their
+  // threads joined, before them. builder_ builds the saves, background_
+  // background_build()'s builds (opened in run()).
+  Builder builder_, background_;
+  bool load_again_ = false;  // a reload asked for while a save's build was under way
+  bool load_after_tile_ = false;  // one shown without compiling, seen from within a tile
+  bool twin_build_ = false;   // background_'s build is of twins
   bool exact_build_ = false;  // ... or of a tweak's exact program
   bool taking_exact_ = false;      // loaded() shows that exact program: the picture stays
   // The background build's results, which its thread writes and this one
