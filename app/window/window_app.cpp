@@ -237,7 +237,7 @@ class WindowApp {
     if (background_building()) {
       const ReloadStatus status = project_.prepare_without_compiling();
       if (status != ReloadStatus::NeedsCompile) {
-        if (images_stale()) read_images_then_take(status);
+        if (status != ReloadStatus::Failed && images_stale()) read_images_then_take(status);
         else if (show_now) show_without_compiling(status);
         else load_after_tile_ = true;
         return;
