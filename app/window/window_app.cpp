@@ -237,8 +237,8 @@ class WindowApp {
     if (background_building()) {
       const ReloadStatus status = project_.prepare_without_compiling();
       if (status != ReloadStatus::NeedsCompile) {
-        if (status != ReloadStatus::Failed && images_stale()) read_images_then_take(status);
-        else if (show_now) show_without_compiling(status);
+        if (status != ReloadStatus::Failed && read_stale_images_then_take(status)) return;
+        if (show_now) show_without_compiling(status);
         else load_after_tile_ = true;
         return;
       }
@@ -254,10 +254,7 @@ class WindowApp {
     builder_.start([this, warm = warm_up_hook(held, builder_, &images_read_), held = std::move(held)] {
       images_read_.clear();
       const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
-      if (status != ReloadStatus::Failed) {
-        for (const ChannelSpec& spec : project_.images_read()) read_ahead(spec, held, images_read_);
-        glFinish();  // complete before the window's context draws with them
-      }
+      if (status != ReloadStatus::Failed) read_images(project_.images_read(), held);
       return status;
     });
   }
@@ -266,26 +263,31 @@ class WindowApp {
     if (options_.verbose) std::cerr << "raymarching: building generation " << project_.generation() + 1 << " at " << steady_ns() << '\n';
   }
 
-  // Whether an image the project reads changed on disk since the graph read it.
-  bool images_stale() const {
-    const ImageTextures::HeldImages held = graph_.images_held();
-    const std::vector<ChannelSpec> specs = project_.images_read();
-    return std::any_of(specs.begin(), specs.end(), [&](const ChannelSpec& s) { return ImageTextures::stale(s, held); });
+  // On the builder: the images of `specs` that changed on disk since
+  // `held`, read into images_read_ for the graph.
+  void read_images(const std::vector<ChannelSpec>& specs, const ImageTextures::HeldImages& held) {
+    for (const ChannelSpec& spec : specs) read_ahead(spec, held, images_read_);
+    glFinish();  // complete before the window's context draws with them
   }
 
   // What project_.prepare_without_compiling() gave, taken once the saves'
-  // builder has read the images that changed: read on the window's thread,
-  // a large one held it (4096x4096 noise: 1.1 s). Nothing compiles.
-  void read_images_then_take(ReloadStatus status) {
+  // builder has read the images that changed on disk (read on the window's
+  // thread, a large one held it: 4096x4096 noise, 1.1 s); nothing compiles.
+  // False, with nothing started, where no image changed.
+  bool read_stale_images_then_take(ReloadStatus status) {
+    ImageTextures::HeldImages held = graph_.images_held();
+    std::vector<ChannelSpec> specs = project_.images_read();
+    if (std::none_of(specs.begin(), specs.end(), [&](const ChannelSpec& s) { return ImageTextures::stale(s, held); }))
+      return false;
     if (status == ReloadStatus::Swapped) background_.cancel();  // it was for the picture about to go
     building_source_ = source_;
     log_build_start();
-    builder_.start([this, status, held = graph_.images_held(), specs = project_.images_read()] {
+    builder_.start([this, status, held = std::move(held), specs = std::move(specs)] {
       images_read_.clear();
-      for (const ChannelSpec& spec : specs) read_ahead(spec, held, images_read_);
-      glFinish();  // complete before the window's context draws with them
+      read_images(specs, held);
       return status;
     });
+    return true;
   }
 
   // What project_.prepare_without_compiling() gave, shown.
