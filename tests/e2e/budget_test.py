@@ -406,11 +406,12 @@ def keeps_drawing_while_building(work):
     check("and Q quits", proc.wait(timeout=10) == 0)
 
 
-def tweaked_and_building_its_exact_program(work, name):
+def saved_during_the_exact_build(work, name, edit):
     """A window of a scene slow to compile, a number edit shown by its twin,
-    and then the tweak's exact program building in the background: the
-    scene, the window's process, its -v log, its id and the scene's text;
-    None where it did not get so far."""
+    the tweak's exact program building in the background, and `edit` of the
+    scene's text saved then: the window's process, its id, its -v log (a
+    function), whether that build was put off (within 90 s) and the log
+    since it began; None where it did not get so far."""
     text = SLOWER_TO_BUILD.replace("SEED", f"{time.time_ns() % 999983 / 999983:.6f}")
     scene, proc, err, _, window = start(work, name, text, "a window slow to compile opens", "--no-ui", timeout=90)
     if not window:
@@ -422,7 +423,11 @@ def tweaked_and_building_its_exact_program(work, name):
     check("a number edit of a scene slow to compile is a tweak", bool(twin and tweaked), log()[-800:])
     building = wait_for(lambda: "building the tweak's exact program, generation 3" in log(), timeout=20)
     check("... whose exact program is built a second later", bool(building), log()[-800:])
-    return (scene, proc, err, window, text) if twin and tweaked and building else None
+    if not (twin and tweaked and building):
+        return None
+    save_by_rename(scene, edit(text))
+    ended = wait_for(lambda: "the tweak's exact program put off" in log(), timeout=90)
+    return proc, window, log, bool(ended), log().split("building the tweak's exact program, generation 3")[-1]
 
 
 def number_edit_during_the_exact_build(work):
@@ -431,17 +436,14 @@ def number_edit_during_the_exact_build(work):
     edit saved meanwhile used to wait for that build (200 to 430 ms for tori
     on 2 cores, saves 1.2 s apart): it is shown at once by the twin, and the
     build, for a text no longer shown, never reaches the screen."""
-    started = tweaked_and_building_its_exact_program(work, "tweaked.frag")
+    started = saved_during_the_exact_build(work, "tweaked.frag",
+                                           lambda text: text.replace("0.5 + 0.5 * sin", "0.125 + 0.5 * sin"))
     if not started:
         return
-    scene, proc, err, window, text = started
-    log = lambda: open(err).read()  # noqa: E731
-    save_by_rename(scene, text.replace("0.5 + 0.5 * sin", "0.125 + 0.5 * sin"))
-    ended = wait_for(lambda: "the tweak's exact program put off" in log(), timeout=90)
-    during = log().split("building the tweak's exact program, generation 3")[-1]
+    proc, window, log, ended, during = started
     shown, end = during.find("reload ok generation 3 (tweaked: tweaked.frag;"), during.find("exact program put off")
     check("a number edit saved while the last tweak's exact program builds is shown before that build ends",
-          bool(ended) and 0 <= shown < end, during[:1500])
+          ended and 0 <= shown < end, during[:1500])
     check("... and that build, for a text no longer shown, is not", "(rebuilt:" not in during[:max(end, 0)],
           during[:1500])
     check("the exact program of the latest tweak follows",
@@ -456,18 +458,15 @@ def code_edit_during_the_exact_build(work):
     stage under way, which is put off. It used to wait for that stage (tori's
     code edits 1.2 s apart: median about 365 ms, against 290 with 3 s
     between them)."""
-    started = tweaked_and_building_its_exact_program(work, "edited.frag")
+    started = saved_during_the_exact_build(work, "edited.frag",
+                                           lambda text: text.replace("c = vec4(uv, ", "c = vec4(uv.yx, "))
     if not started:
         return
-    scene, proc, err, window, text = started
-    log = lambda: open(err).read()  # noqa: E731
-    save_by_rename(scene, text.replace("c = vec4(uv, ", "c = vec4(uv.yx, "))
-    ended = wait_for(lambda: "the tweak's exact program put off" in log(), timeout=90)
+    proc, window, log, ended, during = started
     shown = wait_for(lambda: "reload ok generation 3 (rebuilt: edited.frag;" in log(), timeout=90)
-    during = log().split("building the tweak's exact program, generation 3")[-1]
     build, end = during.find("building generation 3 at"), during.find("exact program put off")
     check("a code edit saved while a tweak's exact program builds starts its build before that build ends",
-          bool(ended) and 0 <= build < end, during[:1500])
+          ended and 0 <= build < end, during[:1500])
     check("... and is shown", bool(shown), log()[-800:])
     check("... and the exact program, put off, is not", "reload ok generation 4" not in log(), log()[-800:])
     status, _, _ = quit_with_q(proc, window)
