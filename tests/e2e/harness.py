@@ -85,7 +85,15 @@ def wait_for(predicate, timeout=20.0, step=0.05):
 
 
 def xdotool(*args):
-    return subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True).stdout.strip()
+    out = subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True).stdout.strip()
+    if args and args[0] == "key" and "--window" in args:
+        # xdotool presses a key of the focused window by XTEST and releases
+        # it by XSendEvent once the window has gone (Q quits in 5 ms): the
+        # key stayed down in the server, and its autorepeat quit every
+        # window opened after it (seen: nine tests of e2e.budget in a row).
+        keys = [str(a) for a in args[args.index("--window") + 2:]]
+        subprocess.run(["xdotool", "keyup", *keys], capture_output=True)
+    return out
 
 
 def save_by_rename(path, text):
