@@ -236,7 +236,9 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
 #else
     float diffuse = max(1.0 - mat.reflectivity, 0.0);  // without refraction, glass is opaque
 #endif
-    color += throughput * (mat.emission + diffuse * rmDirectLight(p, n, -rd, mat, offset, surface.w));
+    color += throughput * mat.emission;
+    // Clear glass and perfect mirrors show no light of their own: no shadow rays, no AO.
+    if (diffuse > 0.0) color += throughput * diffuse * rmDirectLight(p, n, -rd, mat, offset, surface.w);
 
 #if RM_REFRACTION > 0
     if (refracted > 0.0) {
