@@ -14,6 +14,7 @@ build_packages=(
 )
 test_packages=(xvfb xauth xdotool twm x11-apps openimageio-tools python3 git clang libclang-rt-14-dev ffmpeg parallel
   slurmctld slurmd slurm-client munge  # a one-node Slurm that tests/farm/slurm_test.py starts
+  valgrind  # tests/bench/instruction_count.py: a scene's cost, counted, not timed
   gdb  # the backtrace of a window that crashed in an end-to-end test
   fonts-wqy-microhei)  # Chinese letters, which the interface adds when a text holds them
 
