@@ -15,7 +15,7 @@ callgrind's instruction counts are split by where they ran:
              set-up and rasterisation).
 A project with feedback draws every frame up to that time, as `render`
 does. The same binary and scene give the same counts, run after run. Prints a
-markdown table, millions of instructions; a run takes about a minute a scene.
+markdown table, millions of instructions; a scene takes one to two minutes.
 """
 import os
 import re
@@ -71,7 +71,8 @@ def main():
     binary, scenes = args[0], args[1:]
     print(f"| scene | draw at {SIZE}, M | per pixel | codegen, M | mesa, M |")
     print("|---|---:|---:|---:|---:|")
-    pixels = 160 * 90
+    width, height = (int(n) for n in SIZE.split("x"))
+    pixels = width * height
     for scene in scenes:
         c = measure(binary, scene, options)
         print(f"| {label(scene)} | {c['draw'] / 1e6:.1f} | {c['draw'] / pixels:.0f} | {c['codegen'] / 1e6:.0f} | "
