@@ -79,13 +79,15 @@ std::vector<char> read_bytes(const std::string& path) {
 
 }  // namespace
 
-InterfaceFonts::InterfaceFonts(ImFontAtlas& atlas) {
+InterfaceFonts::InterfaceFonts() {
   FontFile mono;
   if (find_face("monospace", kProbe, &mono.path, &mono.index, &mono.charset)) {
     mono.bytes = read_bytes(mono.path);
-    if (!mono.bytes.empty()) files_.push_back(std::move(mono));
+    if (!mono.bytes.empty()) {
+      merged_file_ = mono.path;
+      files_.push_back(std::move(mono));
+    }
   }
-  add_fonts(atlas);
 }
 
 InterfaceFonts::FontFile* InterfaceFonts::file_for(ImWchar letter) {
@@ -100,8 +102,8 @@ InterfaceFonts::FontFile* InterfaceFonts::file_for(ImWchar letter) {
   return &files_.back();
 }
 
-bool InterfaceFonts::want(std::string_view text) {
-  bool found = false;
+std::vector<ImWchar> InterfaceFonts::unasked(std::string_view text) {
+  std::vector<ImWchar> letters;
   const char* at = text.data();
   const char* end = at + text.size();
   while (at < end) {
@@ -112,11 +114,20 @@ bool InterfaceFonts::want(std::string_view text) {
     unsigned letter = 0;
     const int bytes = ImTextCharFromUtf8(&letter, at, end);
     at += bytes > 0 ? bytes : 1;
-    if (letter > IM_UNICODE_CODEPOINT_MAX || in_past_ascii(letter) || added_ >= kMaxAdded ||
+    if (letter > IM_UNICODE_CODEPOINT_MAX || in_past_ascii(letter) || asked_.size() >= 2 * kMaxAdded ||
         !asked_.insert(letter).second)
       continue;
-    if (FontFile* f = file_for(static_cast<ImWchar>(letter))) {
-      f->added.push_back(static_cast<ImWchar>(letter));
+    letters.push_back(static_cast<ImWchar>(letter));
+  }
+  return letters;
+}
+
+bool InterfaceFonts::find(const std::vector<ImWchar>& letters) {
+  bool found = false;
+  for (ImWchar letter : letters) {
+    if (added_ >= kMaxAdded) break;
+    if (FontFile* f = file_for(letter)) {
+      f->added.push_back(letter);
       ++added_;
       found = true;
     }
@@ -124,37 +135,35 @@ bool InterfaceFonts::want(std::string_view text) {
   return found;
 }
 
-void InterfaceFonts::rebuild(ImFontAtlas& atlas) {
-  atlas.Clear();
-  add_fonts(atlas);
-}
-
-void InterfaceFonts::add_fonts(ImFontAtlas& atlas) {
-  // ImGui keeps a pointer to each list until the atlas is built again.
+InterfaceFonts::Atlas InterfaceFonts::make_atlas() const {
+  Atlas out;
+  out.atlas = std::make_unique<ImFontAtlas>();
   for (size_t i = 0; i < files_.size(); ++i) {
-    FontFile& f = files_[i];
-    f.ranges.clear();
-    if (i == 0) f.ranges.assign(std::begin(kPastAscii), std::end(kPastAscii) - 1);
-    for (ImWchar letter : f.added) f.ranges.insert(f.ranges.end(), {letter, letter});
-    f.ranges.push_back(0);
+    std::vector<ImWchar> ranges;
+    if (i == 0) ranges.assign(std::begin(kPastAscii), std::end(kPastAscii) - 1);
+    for (ImWchar letter : files_[i].added) ranges.insert(ranges.end(), {letter, letter});
+    ranges.push_back(0);
+    out.ranges.push_back(std::move(ranges));
   }
   auto add = [&](float pixels) {
     ImFontConfig own;
     own.SizePixels = pixels;
-    ImFont* font = atlas.AddFontDefault(&own);
-    for (const FontFile& f : files_) {
-      if (f.ranges.size() < 2) continue;
+    ImFont* font = out.atlas->AddFontDefault(&own);
+    for (size_t i = 0; i < files_.size(); ++i) {
+      if (out.ranges[i].size() < 2) continue;
+      const FontFile& f = files_[i];
       ImFontConfig past;
       past.MergeMode = true;
       past.FontDataOwnedByAtlas = false;  // files_ holds them, for both sizes
       past.FontNo = f.index;
-      atlas.AddFontFromMemoryTTF(const_cast<char*>(f.bytes.data()), static_cast<int>(f.bytes.size()), pixels, &past,
-                                 f.ranges.data());
+      out.atlas->AddFontFromMemoryTTF(const_cast<char*>(f.bytes.data()), static_cast<int>(f.bytes.size()), pixels,
+                                      &past, out.ranges[i].data());
     }
     return font;
   };
-  normal_ = add(13.0f);
-  small_ = add(11.0f);
+  out.normal = add(13.0f);
+  out.small = add(11.0f);
+  return out;
 }
 
 }  // namespace rm

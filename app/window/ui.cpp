@@ -1,5 +1,7 @@
 #include "window/ui.h"
 
+#include <optional>
+
 #include "core/gl.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -7,16 +9,19 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include "window/font_loader.h"
 #include "window/fonts.h"
 
 namespace rm {
 
 Ui::Ui(GLFWwindow* window) : window_(window) {
   IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
+  fonts_ = std::make_unique<InterfaceFonts>();
+  atlas_ = std::make_unique<InterfaceFonts::Atlas>(fonts_->make_atlas());
+  ImGui::CreateContext(atlas_->atlas.get());  // ours, so that another can take its place
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini in the person's directory
-  fonts_ = std::make_unique<InterfaceFonts>(*io.Fonts);
+  loader_ = std::make_unique<FontLoader>(*fonts_, [] { glfwPostEmptyEvent(); });
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_, false);
   ImGui_ImplOpenGL3_Init("#version 450 core");
@@ -26,9 +31,12 @@ Ui::~Ui() {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  loader_.reset();  // before the fonts it reads
 }
 
-ImFont* Ui::small_font() const { return fonts_->small(); }
+ImFont* Ui::small_font() const { return atlas_->small; }
+
+bool Ui::fonts_arrived() const { return visible_ && loader_->ready(); }
 
 bool Ui::covers(glm::vec2 cursor) const {
   if (!visible_) return false;
@@ -52,21 +60,17 @@ void Ui::on_scroll(double x, double y) { ImGui_ImplGlfw_ScrollCallback(window_, 
 void Ui::on_cursor_enter(bool entered) { ImGui_ImplGlfw_CursorEnterCallback(window_, entered ? 1 : 0); }
 void Ui::on_focus(bool focused) { ImGui_ImplGlfw_WindowFocusCallback(window_, focused ? 1 : 0); }
 
-void Ui::want_letters(std::string_view text) {
-  if (fonts_->want(text)) fonts_due_ = true;
-}
+void Ui::want_letters(std::string_view text) { loader_->ask(fonts_->unasked(text)); }
 
 void Ui::begin() {
   if (!visible_) return;
-  if (fonts_due_) {
-    fonts_due_ = false;
-    ImFontAtlas& atlas = *ImGui::GetIO().Fonts;
-    const bool uploaded = atlas.TexID != ImTextureID{};  // else the backend's first frame uploads it
-    fonts_->rebuild(atlas);
-    if (uploaded) {
-      ImGui_ImplOpenGL3_DestroyFontsTexture();
-      ImGui_ImplOpenGL3_CreateFontsTexture();
-    }
+  if (std::optional<InterfaceFonts::Atlas> built = loader_->take()) {
+    ImGuiIO& io = ImGui::GetIO();
+    const bool uploaded = io.Fonts->TexID != ImTextureID{};  // else the backend's first frame uploads it
+    if (uploaded) ImGui_ImplOpenGL3_DestroyFontsTexture();
+    *atlas_ = std::move(*built);
+    io.Fonts = atlas_->atlas.get();
+    if (uploaded) ImGui_ImplOpenGL3_CreateFontsTexture();
   }
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();

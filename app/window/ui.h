@@ -9,12 +9,14 @@
 
 #include <glm/glm.hpp>
 
+#include "window/fonts.h"
+
 struct GLFWwindow;
 struct ImFont;
 
 namespace rm {
 
-class InterfaceFonts;
+class FontLoader;
 
 class Ui {
  public:
@@ -42,8 +44,12 @@ class Ui {
   void on_focus(bool focused);
 
   // A text the next frame shows: letters it holds that the fonts lack are
-  // looked up, and the font atlas is built again at the next begin().
+  // looked up and a font atlas with them is built, both on a thread of the
+  // fonts' own (FontLoader), which wakes the window's loop when it is ready.
   void want_letters(std::string_view text);
+  // Such an atlas is ready: the next begin() takes it, and the interface
+  // should be drawn again to show the letters.
+  bool fonts_arrived() const;
   // Starts a frame; widgets go between begin() and end(), which draws them
   // over the bound framebuffer. Both do nothing while hidden.
   void begin();
@@ -57,8 +63,9 @@ class Ui {
   GLFWwindow* window_;
   bool visible_ = true;
   bool in_frame_ = false;
-  bool fonts_due_ = false;  // want_letters() found letters the atlas lacks
-  std::unique_ptr<InterfaceFonts> fonts_;  // outlives the context's atlas, which reads its bytes
+  std::unique_ptr<InterfaceFonts> fonts_;  // outlives the atlases, which read its bytes
+  std::unique_ptr<InterfaceFonts::Atlas> atlas_;  // the context's (io.Fonts)
+  std::unique_ptr<FontLoader> loader_;
   std::vector<glm::vec4> rects_, next_rects_;  // x, y, width, height of each panel
 };
 

@@ -120,6 +120,8 @@ class WindowApp {
       // or a save (wake_on_save_), or until the watcher or a background build
       // needs the loop (idle_wait_s). A picture drawn in tiles comes back
       // here between slices of tiles.
+      // An atlas with letters the interface lacked: its text is drawn again.
+      if (ui_.fonts_arrived()) ui_frames_ = std::max(ui_frames_, 1);
       auto busy = [&] {
         return load_after_tile_ || redraw_needed() || ui_frames_ > 0 || (drawing_ && !holds_for_build()) ||
                (refining() && builders_idle()) || shot_requested_ || (!shots_.empty() && !holds_shots());
