@@ -209,12 +209,14 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   // parts, which mapBound gives exactly. map() only for the others, in a loop
   // no longer than they span: a CPU renderer runs an if's body for every pixel.
   int first = RM_AO_SAMPLES, last = -1;
-  bool costly[RM_AO_SAMPLES];
-  for (int i = 0; i < RM_AO_SAMPLES; ++i) {
+  // One loop, not RM_AO_SAMPLES copies of mapBound (from RM_ZERO), and the
+  // costly taps as bits: an array indexed in a loop is slow on llvmpipe.
+  int costly = 0;  // bit i: tap i needs map() (RM_AO_SAMPLES < 32)
+  for (int i = RM_ZERO; i < RM_AO_SAMPLES; ++i) {
     float h = rmAoTapDistance(i);
     vec2 bound = rmMapBound(p + n * h);
     bool exact = bound.y - base >= h;
-    costly[i] = !exact;
+    costly |= exact ? 0 : 1 << i;
     blocked += exact ? weight * rmAoTapBlocked(h, bound.x, base) : 0.0;
     first = exact ? first : min(first, i);
     last = exact ? last : i;
@@ -224,7 +226,7 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   weight = pow(0.8, float(first));
   for (int i = first; i <= last; ++i) {
     float h = rmAoTapDistance(i);
-    if (costly[i]) blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
+    if ((costly & (1 << i)) != 0) blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
     weight *= 0.8;
   }
 #else
