@@ -16,11 +16,21 @@ uniform float spin;   // ui: min=0 max=3 default=1
 uniform float polish; // ui: min=0 max=1 default=0.35
 
 // Torus i of the chain: alternate ones stand upright, so neighbours link.
+// Each torus's centre and turns depend on the time only: worked out once a
+// pixel in animate(), not in each of the dozens of map() calls a pixel makes.
+vec3 centres[5];
+mat3 uprights[5], spins[5];
+
+void animate() {
+  for (int i = 0; i < 5; ++i) {
+    centres[i] = vec3(1.1 * (float(i) - 2.0), 0.15 * sin(iTime + float(i)), 0.0);
+    uprights[i] = rmRotationX(i % 2 == 0 ? 0.0 : 1.5708);  // upright or flat
+    spins[i] = rmRotationY(0.4 * spin * iTime * (i % 2 == 0 ? 1.0 : -1.0));
+  }
+}
+
 RmHit torus(int i, vec3 p) {
-  float x = 1.1 * (float(i) - 2.0);
-  vec3 q = p - vec3(x, 0.15 * sin(iTime + float(i)), 0.0);
-  q = opRotate(q, rmRotationX(i % 2 == 0 ? 0.0 : 1.5708));  // upright or flat
-  q = opRotate(q, rmRotationY(0.4 * spin * iTime * (i % 2 == 0 ? 1.0 : -1.0)));
+  vec3 q = opRotate(opRotate(p - centres[i], uprights[i]), spins[i]);
   return rmHit(sdTorus(q, vec2(0.6, 0.13)), float(i));
 }
 
@@ -46,6 +56,7 @@ RmMaterial groundMaterial(vec3 p) {
 }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  animate();
   RmCamera cam = rmLookAt(rmOrbit(vec3(0.0), 5.2, 0.25 * sin(0.2 * iTime), 0.35), vec3(0.0, -0.2, 0.0), 0.8);
   vec3 color = rmRenderPixel(cam, fragCoord, iResolution);
   fragColor = vec4(rmLinearToSrgb(rmToneMapACES(color)), 1.0);
