@@ -9,8 +9,12 @@
 #include <rm/lighting.glsl>
 #include <rm/camera.glsl>
 
-vec3 ballCentre() {
-  float t = 0.7 * iTime;
+// The ball's centre depends on the time only: worked out once a pixel, at the
+// start of mainImage, not in each of the dozens of map() calls a pixel makes.
+vec3 ballCentre;
+
+vec3 ballCentreAt(float time) {
+  float t = 0.7 * time;
   return vec3(1.6 * sin(t), 0.45 + 0.25 * abs(sin(2.0 * t)), -0.8 + 1.1 * sin(2.0 * t));
 }
 
@@ -24,7 +28,7 @@ vec2 room(vec3 p) {
 }
 
 vec2 scene(vec3 p) {
-  vec2 ball = vec2(sdSphere(p - ballCentre(), 0.45), 0.0);
+  vec2 ball = vec2(sdSphere(p - ballCentre, 0.45), 0.0);
   vec2 walls = room(p);
   return ball.x < walls.x ? ball : walls;
 }
@@ -41,6 +45,7 @@ vec3 albedo(vec3 p) {
 }
 
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+  ballCentre = ballCentreAt(iTime);
   RmCamera cam = rmLookAt(vec3(0.0, 1.6, 5.5), vec3(0.0, 1.0, -1.0), 0.95);
   vec3 rd = rmCameraRay(cam, fragCoord, iResolution);
   RmMarchSettings s = rmMarchSettings();
