@@ -14,6 +14,9 @@
 #define RM_GRID_PERIOD vec3(1.8)
 #define RM_GRID_RADIUS 0.7
 #define RM_GRID_CONVEX  // a shadow ray leaving a cube never meets it again
+// Each cube's own bounding sphere (cellRadius): rays pass the small ones'
+// cells in one step.
+#define RM_GRID_CELL_RADIUS
 #include <rm/sdf.glsl>
 #include <rm/transforms.glsl>
 #include <rm/texture.glsl>
@@ -22,13 +25,22 @@
 
 vec3 background(vec3 rd) { return vec3(0.05, 0.07, 0.12); }
 
+// Half the side of the cube whose cell hashes to h.
+float cubeSize(vec3 h) { return 0.3 + 0.1 * h.y; }
+
 // The cube of one cell; rm/grid.glsl makes map() from it. Each cube turns
 // about its own axis, so a neighbour's corner can come nearer than this cell's
 // cube: map() never steps past the border by more than the gap every cube
 // leaves (half-period 0.9 minus the radius 0.7).
 float mapCell(vec3 q, vec3 cell) {
   vec3 h = rmHash3(ivec3(cell));
-  return sdRoundBox(opRotateAxis(q, h - 0.5, iTime * (0.3 + h.x)), vec3(0.3 + 0.1 * h.y), 0.05);
+  return sdRoundBox(opRotateAxis(q, h - 0.5, iTime * (0.3 + h.x)), vec3(cubeSize(h)), 0.05);
+}
+
+// The rounded cube's corners, however it turns: the box within it reaches
+// sqrt(3) times its half-size less the rounding, and the rounding adds to it.
+float cellRadius(vec3 cell) {
+  return sqrt(3.0) * (cubeSize(rmHash3(ivec3(cell))) - 0.05) + 0.05 + 1e-3;
 }
 
 RmMaterial material(vec3 p, vec3 n) {

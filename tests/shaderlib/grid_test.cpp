@@ -30,6 +30,15 @@ float instance(vec3 q, vec3 cell) {
 }
 )";
 
+// Each cell's own bounding sphere, for RM_GRID_CELL_RADIUS: the offset plus
+// the radius, from 0.3 to 0.51 where all share kRadius.
+const char* kCellRadius = R"(
+float cellRadius(vec3 cell) {
+  float k = mod(cell.x + 2.0 * cell.y + 3.0 * cell.z, 3.0);
+  return length(0.1 * vec2(k - 1.0, mod(cell.x, 2.0) - 0.5)) + 0.25 + 0.1 * k + 1e-4;
+}
+)";
+
 double gl_mod(double x, double y) { return x - y * std::floor(x / y); }
 
 struct Sphere {
@@ -104,19 +113,20 @@ std::vector<Ray> rays() {
 
 std::string grid_prelude(const std::string& defines) {
   return "#define RM_GRID_PERIOD vec3(2.0, 1.5, 2.5)\n#define RM_GRID_RADIUS 0.6\n" + defines +
-         "#include <rm/grid.glsl>\n" + kInstance + "float mapCell(vec3 q, vec3 cell) { return instance(q, cell); }\n";
+         "#include <rm/grid.glsl>\n" + kInstance + "float mapCell(vec3 q, vec3 cell) { return instance(q, cell); }\n" +
+         (defines.find("RM_GRID_CELL_RADIUS") != std::string::npos ? kCellRadius : "");
 }
 
 // Marches every ray with `march` (rmMarchGrid, or rmMarch: the plain march of
 // the grid's map(), the cell's instance or the border plus the gap).
-std::vector<Traced> march(const std::string& march, const std::vector<Ray>& rs) {
+std::vector<Traced> march(const std::string& march, const std::vector<Ray>& rs, const std::string& defines = "") {
   const std::string trace = "vec4 trace(vec3 ro, vec3 rd) {\n  RmMarchSettings s = rmMarchSettings();\n"
                             "  s.maxSteps = 2000;\n  s.tMax = 30.0;\n  RmMarch m = " + march + "(ro, rd, s);\n"
                             "  return vec4(m.t, float(m.steps), float(m.outcome), m.tolerance);\n}\n";
   std::vector<glm::vec4> ps, qs;
   for (const Ray& r : rs) ps.emplace_back(glm::vec3(r.ro), 0), qs.emplace_back(glm::vec3(r.rd), 0);
   std::string error;
-  auto got = probe(grid_prelude("") + trace, "trace(P.xyz, Q.xyz)", ps, &error, qs);
+  auto got = probe(grid_prelude(defines) + trace, "trace(P.xyz, Q.xyz)", ps, &error, qs);
   EXPECT_TRUE(got) << error;
   std::vector<Traced> out;
   for (const glm::vec4& v : got.value_or(std::vector<glm::vec4>())) out.push_back(decode_trace(v));
@@ -155,6 +165,38 @@ TEST_F(Grid, MarchesCellByCellToTheAnalyticHitsInFewerSteps) {
   EXPECT_GT(misses, 100);
   EXPECT_GT(axis_or_face, 150) << "rays along an axis or in a face plane are checked too";
   EXPECT_LT(cell_steps, 0.7 * plain_steps) << "cells " << cell_steps << ", plain " << plain_steps;
+}
+
+// With each cell's own bounding sphere (RM_GRID_CELL_RADIUS) the grid march
+// meets the same hits and misses, and crosses more cells in one step.
+TEST_F(Grid, EachCellsOwnRadiusGivesTheSameHitsInFewerSteps) {
+  const std::vector<Ray> rs = rays();
+  const std::vector<Traced> shared = march("rmMarchGrid", rs),
+                            own = march("rmMarchGrid", rs, "#define RM_GRID_CELL_RADIUS\n");
+  ASSERT_EQ(shared.size(), rs.size());
+  ASSERT_EQ(own.size(), rs.size());
+  int hits = 0, misses = 0;
+  double shared_steps = 0, own_steps = 0;
+  for (size_t i = 0; i < rs.size(); ++i) {
+    SCOPED_TRACE("ray " + std::to_string(i));
+    const Analytic want = analytic(rs[i]);
+    if (!want.clear) continue;
+    if (want.t >= 0 && want.cos >= 0.1) {
+      ++hits;
+      ASSERT_EQ(own[i].outcome, kHit);
+      EXPECT_NEAR(own[i].t, want.t, own[i].tolerance / want.cos + 1e-5);
+    } else if (want.t < 0) {
+      ++misses;
+      ASSERT_EQ(own[i].outcome, kMiss);
+    } else {
+      continue;
+    }
+    shared_steps += shared[i].steps;
+    own_steps += own[i].steps;
+  }
+  EXPECT_GT(hits, 600);
+  EXPECT_GT(misses, 100);
+  EXPECT_LT(own_steps, 0.9 * shared_steps) << "own " << own_steps << ", shared " << shared_steps;
 }
 
 // rmHardShadowCells: 0 exactly when a sphere lies within the segment. From a point on a sphere toward the open side, RM_GRID_CONVEX
