@@ -15,6 +15,11 @@
 // sets rm_Zero: GL gives every uniform 0 when the program links.
 uniform int rm_Zero;
 #define RM_ZERO rm_Zero
+// The library's loops test at the bottom (do-while), behind an if where they
+// may run no turn. A CPU renderer such as llvmpipe runs a loop's body until
+// no lane of the group is left, and a lane that leaves by a test at the top
+// costs the group one more turn with every lane masked off: one more map()
+// call for nothing whenever a ray ends past its far limit or out of steps.
 
 // Largest component of v.
 float rmMaxComponent(vec2 v) { return max(v.x, v.y); }

@@ -52,13 +52,16 @@ float sdMandelbulb(vec3 p, float power, int iterations) {
   vec3 z = p;
   float dr = 1.0;  // running derivative |dz/dp|
   float r = length(z);
-  for (int i = 0; i < iterations && r <= 2.0 && r > 1e-20; ++i) {
-    // z -> z^power + p in spherical coordinates; atan(0, 0) is avoided by r > 0.
-    float theta = acos(clamp(z.z / r, -1.0, 1.0)) * power;
-    float phi = atan(z.y, z.x) * power;
-    dr = min(pow(r, power - 1.0) * power * dr + 1.0, 1e30);  // capped: no inf * 0 later
-    z = pow(r, power) * vec3(sin(theta) * cos(phi), sin(phi) * sin(theta), cos(theta)) + p;
-    r = length(z);
+  int i = 0;
+  if (i < iterations && r <= 2.0 && r > 1e-20) {
+    do {  // tested at the bottom (rm/common.glsl): rays that escape early leave by the test
+      // z -> z^power + p in spherical coordinates; atan(0, 0) is avoided by r > 0.
+      float theta = acos(clamp(z.z / r, -1.0, 1.0)) * power;
+      float phi = atan(z.y, z.x) * power;
+      dr = min(pow(r, power - 1.0) * power * dr + 1.0, 1e30);  // capped: no inf * 0 later
+      z = pow(r, power) * vec3(sin(theta) * cos(phi), sin(phi) * sin(theta), cos(theta)) + p;
+      r = length(z);
+    } while (++i < iterations && r <= 2.0 && r > 1e-20);
   }
   return 0.5 * log(max(r, 1e-30)) * r / dr;
 }

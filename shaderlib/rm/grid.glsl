@@ -89,45 +89,44 @@ RmMarch rmMarchGrid(vec3 ro, vec3 rd, RmMarchSettings s) {
   if (!rmMarchSpan(ro, rd, s, t, tEnd, miss)) return rmEndOnGround(miss);
   RmGridRay ray = rmGridRay(rd);
   float originScale = length(ro);
-  for (int i = 0; i < s.maxSteps; ++i) {
-    if (t > tEnd) {
-      miss.steps = i;
-      return rmEndOnGround(miss);
-    }
-    vec3 p = ro + rd * t;
-    vec3 cell = round(p / RM_GRID_PERIOD);
-    vec3 q = p - RM_GRID_PERIOD * cell;
-    float exit = rmCellExit(ray, q);
-    // The ray's span through the cell's bounding sphere, from p.
-    float b = dot(q, rd);
-    float radius = rmCellRadius(cell);
-    float h = b * b - dot(q, q) + radius * radius;
-    float root = sqrt(max(h, 0.0));
-    float enter = max(-b - root, 0.0), leave = -b + root;
-    // Past the face by a little more than float spacing at the point, so that
-    // round() puts the next point in the next cell.
-    float advance = exit + 1e-4 + 1e-6 * (originScale + t);
-    if (h > 0.0 && leave > 0.0 && enter < exit) {
-      float d = mapCell(q + rd * enter, cell);
+  int i = 0;
+  if (i < s.maxSteps && !(t > tEnd)) {
+    do {  // tested at the bottom (rm/common.glsl)
+      vec3 p = ro + rd * t;
+      vec3 cell = round(p / RM_GRID_PERIOD);
+      vec3 q = p - RM_GRID_PERIOD * cell;
+      float exit = rmCellExit(ray, q);
+      // The ray's span through the cell's bounding sphere, from p.
+      float b = dot(q, rd);
+      float radius = rmCellRadius(cell);
+      float h = b * b - dot(q, q) + radius * radius;
+      float root = sqrt(max(h, 0.0));
+      float enter = max(-b - root, 0.0), leave = -b + root;
+      // Past the face by a little more than float spacing at the point, so that
+      // round() puts the next point in the next cell.
+      float advance = exit + 1e-4 + 1e-6 * (originScale + t);
+      if (h > 0.0 && leave > 0.0 && enter < exit) {
+        float d = mapCell(q + rd * enter, cell);
 #ifdef RM_COUNT
-      ++rmEvaluations;
+        ++rmEvaluations;
 #endif
-      float threshold = rmHitThreshold(s, t + enter, originScale);
-      if (d < threshold) {
+        float threshold = rmHitThreshold(s, t + enter, originScale);
+        if (d < threshold) {
 #ifdef RM_VIEW
-        rmRecordHit(t + enter);
+          rmRecordHit(t + enter);
 #endif
-        return RmMarch(t + enter, i + 1, RM_HIT, false, threshold);
+          return RmMarch(t + enter, i + 1, RM_HIT, false, threshold);
+        }
+        if (enter + d < min(leave, exit)) advance = enter + d;
       }
-      if (enter + d < min(leave, exit)) advance = enter + d;
-    }
-    t += advance;
+      t += advance;
+    } while (++i < s.maxSteps && !(t > tEnd));
   }
   if (t > tEnd) {
-    miss.steps = s.maxSteps;
+    miss.steps = i;
     return rmEndOnGround(miss);
   }
-  return RmMarch(t, s.maxSteps, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
+  return RmMarch(t, i, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
 }
 
 // rmHardShadow through the grid: 0 if an instance lies on the ray ro + t rd

@@ -122,10 +122,12 @@ float rmHardShadow(vec3 ro, vec3 rd, float tMin, float tMax) {
 #ifdef RM_MAP_BOUND
   t = rmSkipOpenSpace(ro, rd, t, tMax, 0.0, 1e-4, 1.0, 1e30, RM_SHADOW_STEPS, i).x;
 #endif
-  for (; i < RM_SHADOW_STEPS && t < tMax; ++i) {
-    float h = rmMap(ro + rd * t);
-    if (h < 1e-4 * t) return 0.0;
-    t += h;
+  if (i < RM_SHADOW_STEPS && t < tMax) {
+    do {  // tested at the bottom (rm/common.glsl)
+      float h = rmMap(ro + rd * t);
+      if (h < 1e-4 * t) return 0.0;
+      t += h;
+    } while (++i < RM_SHADOW_STEPS && t < tMax);
   }
   return 1.0;
 }
@@ -144,11 +146,13 @@ float rmSoftShadow(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   shade = min(shade, open.y);
   if (shade < 1e-3) return 0.0;
 #endif
-  for (; i < RM_SHADOW_STEPS && t < tMax; ++i) {
-    float h = rmMap(ro + rd * t);
-    shade = min(shade, k * h / t);
-    if (shade < 1e-3) break;
-    t += clamp(h, 1e-3, 0.5);  // small steps in the penumbra, bounded ones in the open
+  if (i < RM_SHADOW_STEPS && t < tMax) {
+    do {  // tested at the bottom (rm/common.glsl)
+      float h = rmMap(ro + rd * t);
+      shade = min(shade, k * h / t);
+      if (shade < 1e-3) break;
+      t += clamp(h, 1e-3, 0.5);  // small steps in the penumbra, bounded ones in the open
+    } while (++i < RM_SHADOW_STEPS && t < tMax);
   }
   return clamp(shade, 0.0, 1.0);
 }
@@ -166,23 +170,25 @@ float rmSoftShadowImproved(vec3 ro, vec3 rd, float tMin, float tMax, float k) {
   // fails does map() decide the penumbra.
   t = rmSkipOpenSpace(ro, rd, t, tMax, 0.0, 1.0 / k, 1.0, 0.5, RM_SHADOW_STEPS, i).x;
 #endif
-  for (; i < RM_SHADOW_STEPS && t < tMax; ++i) {
-    float h = rmMap(ro + rd * t);
-    if (h <= 0.0) return 0.0;
-    // The occluder is nearest where the spheres of this and the last step meet:
-    // y back along the ray, d off it. iq writes y = h^2 / (2 previousH), which
-    // assumes the step equalled previousH; clamped steps break that, and when
-    // one sphere holds the other (h >= 2 previousH) there is no chord and
-    // sqrt(h^2 - y^2) would be NaN or 0. Then fall back to the classic estimate.
-    float y = stepLength > 0.0 ? (h * h - previousH * previousH + stepLength * stepLength) / (2.0 * stepLength) : 0.0;
-    float d = h;
-    if (y > 0.0 && y < h) d = sqrt(h * h - y * y);
-    else y = 0.0;
-    shade = min(shade, k * d / max(t - y, 1e-6));
-    if (shade < 1e-3) break;
-    previousH = h;
-    stepLength = clamp(h, 1e-3, 0.5);
-    t += stepLength;
+  if (i < RM_SHADOW_STEPS && t < tMax) {
+    do {  // tested at the bottom (rm/common.glsl)
+      float h = rmMap(ro + rd * t);
+      if (h <= 0.0) return 0.0;
+      // The occluder is nearest where the spheres of this and the last step meet:
+      // y back along the ray, d off it. iq writes y = h^2 / (2 previousH), which
+      // assumes the step equalled previousH; clamped steps break that, and when
+      // one sphere holds the other (h >= 2 previousH) there is no chord and
+      // sqrt(h^2 - y^2) would be NaN or 0. Then fall back to the classic estimate.
+      float y = stepLength > 0.0 ? (h * h - previousH * previousH + stepLength * stepLength) / (2.0 * stepLength) : 0.0;
+      float d = h;
+      if (y > 0.0 && y < h) d = sqrt(h * h - y * y);
+      else y = 0.0;
+      shade = min(shade, k * d / max(t - y, 1e-6));
+      if (shade < 1e-3) break;
+      previousH = h;
+      stepLength = clamp(h, 1e-3, 0.5);
+      t += stepLength;
+    } while (++i < RM_SHADOW_STEPS && t < tMax);
   }
   return clamp(shade, 0.0, 1.0);
 }
@@ -212,7 +218,8 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   // One loop, not RM_AO_SAMPLES copies of mapBound (from RM_ZERO), and the
   // costly taps as bits: an array indexed in a loop is slow on llvmpipe.
   int costly = 0;  // bit i: tap i needs map() (RM_AO_SAMPLES < 32)
-  for (int i = RM_ZERO; i < RM_AO_SAMPLES; ++i) {
+  int i = RM_ZERO;
+  do {  // tested at the bottom (rm/common.glsl)
     float h = rmAoTapDistance(i);
     vec2 bound = rmMapBound(p + n * h);
     bool exact = bound.y - base >= h;
@@ -222,22 +229,26 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
     last = exact ? last : i;
     total += weight;
     weight *= 0.8;
-  }
+  } while (++i < RM_AO_SAMPLES);
   weight = pow(0.8, float(first));
-  for (int i = first; i <= last; ++i) {
-    float h = rmAoTapDistance(i);
-    if ((costly & (1 << i)) != 0) blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
-    weight *= 0.8;
+  if (first <= last) {
+    i = first;
+    do {
+      float h = rmAoTapDistance(i);
+      if ((costly & (1 << i)) != 0) blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
+      weight *= 0.8;
+    } while (++i <= last);
   }
 #else
   // One loop (from RM_ZERO), not RM_AO_SAMPLES copies of map(): it compiles
   // faster, and draws faster too unless map() is tiny.
-  for (int i = RM_ZERO; i < RM_AO_SAMPLES; ++i) {
+  int i = RM_ZERO;
+  do {  // tested at the bottom (rm/common.glsl)
     float h = rmAoTapDistance(i);
     blocked += weight * rmAoTapBlocked(h, rmMap(p + n * h), base);
     total += weight;
     weight *= 0.8;  // near taps matter most
-  }
+  } while (++i < RM_AO_SAMPLES);
 #endif
   return clamp(1.0 - 1.5 * blocked / total, 0.0, 1.0);
 }

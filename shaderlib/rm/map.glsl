@@ -63,12 +63,15 @@ vec2 rmMapBound(vec3 p) {
 vec2 rmSkipOpenSpace(vec3 ro, vec3 rd, float t, float tEnd, float nearMin, float nearPerT, float cheapStop,
                      float maxStep, int maxSteps, out int steps) {
   float closest = 1e30;
-  for (steps = 0; steps < maxSteps && t < tEnd; ++steps) {
-    vec2 h = rmMapBound(ro + rd * t);
-    float near = max(nearMin, nearPerT * t);
-    closest = min(closest, h.x / near);
-    if (h.y < near || h.x < cheapStop * near) break;
-    t += min(min(h.x, h.y), maxStep);
+  steps = 0;
+  if (steps < maxSteps && t < tEnd) {
+    do {  // tested at the bottom (rm/common.glsl)
+      vec2 h = rmMapBound(ro + rd * t);
+      float near = max(nearMin, nearPerT * t);
+      closest = min(closest, h.x / near);
+      if (h.y < near || h.x < cheapStop * near) break;
+      t += min(min(h.x, h.y), maxStep);
+    } while (++steps < maxSteps && t < tEnd);
   }
   return vec2(t, closest);
 }

@@ -192,35 +192,34 @@ RmMarch rmMarch(vec3 ro, vec3 rd, RmMarchSettings s) {
   float omega = s.omega;
   float previousD = 0.0;  // distance at the last accepted point
   float stepLength = 0.0;
-  for (int i = skipped; i < s.maxSteps; ++i) {
-    if (t > tEnd) {
-      miss.steps = i - skipped;
-      return rmEndOnGround(miss);
-    }
-    float d = s.side * rmMap(ro + rd * t);
-    if (omega > 1.0 && stepLength > 0.0 && d + previousD < stepLength) {
-      // Overshot: the plain step (previousD) was safe, the stretched one may not be.
-      t -= stepLength - previousD;
-      omega = 1.0;
-      stepLength = 0.0;
-      continue;
-    }
-    float threshold = rmHitThreshold(s, t, originScale);
-    if (d < threshold) {
+  int i = skipped;
+  if (i < s.maxSteps && !(t > tEnd)) {
+    do {  // tested at the bottom (rm/common.glsl)
+      float d = s.side * rmMap(ro + rd * t);
+      if (omega > 1.0 && stepLength > 0.0 && d + previousD < stepLength) {
+        // Overshot: the plain step (previousD) was safe, the stretched one may not be.
+        t -= stepLength - previousD;
+        omega = 1.0;
+        stepLength = 0.0;
+        continue;
+      }
+      float threshold = rmHitThreshold(s, t, originScale);
+      if (d < threshold) {
 #ifdef RM_VIEW
-      rmRecordHit(t);
+        rmRecordHit(t);
 #endif
-      return RmMarch(t, i + 1 - skipped, RM_HIT, false, threshold);
-    }
-    previousD = d;
-    stepLength = omega * d;
-    t += stepLength;
+        return RmMarch(t, i + 1 - skipped, RM_HIT, false, threshold);
+      }
+      previousD = d;
+      stepLength = omega * d;
+      t += stepLength;
+    } while (++i < s.maxSteps && !(t > tEnd));
   }
   if (t > tEnd) {
-    miss.steps = s.maxSteps - skipped;
+    miss.steps = i - skipped;
     return rmEndOnGround(miss);
   }
-  return RmMarch(t, s.maxSteps - skipped, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
+  return RmMarch(t, i - skipped, RM_OUT_OF_STEPS, false, rmHitThreshold(s, t, originScale));
 }
 
 // rmMarch with the default settings.

@@ -39,11 +39,12 @@ float rmNormalEpsilon(vec3 p, float tolerance) {
 // made code edits of tori, cubes and optics 8 to 19 ms slower to show.
 vec4 rmGradientTetrahedron(vec3 p, float eps) {
   vec4 g = vec4(0.0);
-  for (int i = RM_ZERO; i < 4; ++i) {
+  int i = RM_ZERO;
+  do {
     // The corners (1,-1,-1), (-1,-1,1), (-1,1,-1), (1,1,1) from the bits of i.
     vec3 corner = 2.0 * vec3(((i + 3) >> 1) & 1, (i >> 1) & 1, i & 1) - 1.0;
     g += vec4(corner, 0.25) * rmMap(p + corner * eps);
-  }
+  } while (++i < 4);
   return g;
 }
 

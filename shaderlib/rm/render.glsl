@@ -117,7 +117,8 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset, float sur
   occlusion = rmAmbientOcclusion(p, n, surface);
 #endif
   vec3 color = m.albedo * RM_AMBIENT * occlusion * (0.6 + 0.4 * n.y);
-  for (int i = 0; i < RM_LIGHT_COUNT; ++i) {
+  int i = 0;
+  do {  // tested at the bottom (rm/common.glsl)
     RmLight l = light(i);
     float visible = 1.0;
 #ifdef RM_SHADOWS
@@ -146,7 +147,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset, float sur
     }
 #endif
     color += rmShade(p, n, v, m, l, visible);
-  }
+  } while (++i < RM_LIGHT_COUNT);
   return color;
 }
 
@@ -181,7 +182,8 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
   bool inside = false;          // travelling through a transparent solid
   RmMaterial medium;            // that solid's material
 #endif
-  for (int bounce = 0; bounce <= RM_REFLECTIONS + RM_REFRACTION; ++bounce) {
+  int bounce = 0;
+  do {  // tested at the bottom (rm/common.glsl)
 #if RM_REFRACTION > 0
     s.side = inside ? -1.0 : 1.0;
 #ifdef RM_GROUND
@@ -262,7 +264,7 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
     }
 #endif
     break;
-  }
+  } while (++bounce <= RM_REFLECTIONS + RM_REFRACTION);
 #ifdef RM_FOG
   color = rmFog(color, rmBackground(primary), firstT, RM_FOG);
 #endif
@@ -274,10 +276,11 @@ vec3 rmRender(vec3 ro, vec3 rd, float cone) {
 vec3 rmRenderPixel(RmCamera camera, vec2 fragCoord, vec3 resolution) {
   float cone = rmPixelCone(camera, resolution) / float(RM_SAMPLES);
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < RM_SAMPLES * RM_SAMPLES; ++i) {
+  int i = 0;
+  do {  // tested at the bottom (rm/common.glsl)
     vec2 offset = (vec2(i % RM_SAMPLES, i / RM_SAMPLES) + 0.5) / float(RM_SAMPLES) - 0.5;
     sum += rmRender(camera.position, rmCameraRay(camera, fragCoord + offset, resolution), cone);
-  }
+  } while (++i < RM_SAMPLES * RM_SAMPLES);
   return sum / float(RM_SAMPLES * RM_SAMPLES);
 }
 
