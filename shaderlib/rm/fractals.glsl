@@ -12,13 +12,16 @@
 float sdMenger(vec3 p, int iterations) {
   float d = sdBox(p, vec3(1.0));
   float scale = 1.0;
-  for (int i = 0; i < iterations; ++i) {
-    // Each level cuts a cross of square holes through every sub-cube.
-    vec3 a = mod(p * scale, 2.0) - 1.0;
-    scale *= 3.0;
-    vec3 r = abs(1.0 - 3.0 * abs(a));
-    float holes = min(max(r.x, r.y), min(max(r.y, r.z), max(r.z, r.x)));
-    d = max(d, (holes - 1.0) / scale);
+  int i = 0;
+  if (i < iterations) {
+    do {  // tested at the bottom (rm/common.glsl)
+      // Each level cuts a cross of square holes through every sub-cube.
+      vec3 a = mod(p * scale, 2.0) - 1.0;
+      scale *= 3.0;
+      vec3 r = abs(1.0 - 3.0 * abs(a));
+      float holes = min(max(r.x, r.y), min(max(r.y, r.z), max(r.z, r.x)));
+      d = max(d, (holes - 1.0) / scale);
+    } while (++i < iterations);
   }
   return d;
 }
@@ -34,13 +37,16 @@ float sdTetrahedron(vec3 p, float s) {
 // folds. bound
 float sdSierpinski(vec3 p, int iterations) {
   float scale = 1.0;
-  for (int i = 0; i < iterations; ++i) {
-    // Reflect onto the side of vertex (1,1,1), then grow about it by 2.
-    if (p.x + p.y < 0.0) p.xy = -p.yx;
-    if (p.x + p.z < 0.0) p.xz = -p.zx;
-    if (p.y + p.z < 0.0) p.yz = -p.zy;
-    p = 2.0 * p - 1.0;
-    scale *= 2.0;
+  int i = 0;
+  if (i < iterations) {
+    do {  // tested at the bottom (rm/common.glsl)
+      // Reflect onto the side of vertex (1,1,1), then grow about it by 2.
+      if (p.x + p.y < 0.0) p.xy = -p.yx;
+      if (p.x + p.z < 0.0) p.xz = -p.zx;
+      if (p.y + p.z < 0.0) p.yz = -p.zy;
+      p = 2.0 * p - 1.0;
+      scale *= 2.0;
+    } while (++i < iterations);
   }
   return sdTetrahedron(p, 1.0) / scale;
 }

@@ -82,11 +82,14 @@ float rmFbm(vec3 p, int octaves) {
   // A rotation between octaves hides the lattice's axes.
   const mat3 turn = mat3(0.00, 0.80, 0.60, -0.80, 0.36, -0.48, -0.60, -0.48, 0.64);
   float sum = 0.0, amplitude = 0.5, total = 0.0;
-  for (int i = 0; i < octaves; ++i) {
-    sum += amplitude * rmValueNoise(p);
-    total += amplitude;
-    p = turn * p * 2.01;
-    amplitude *= 0.5;
+  int i = 0;
+  if (i < octaves) {
+    do {  // tested at the bottom (rm/common.glsl)
+      sum += amplitude * rmValueNoise(p);
+      total += amplitude;
+      p = turn * p * 2.01;
+      amplitude *= 0.5;
+    } while (++i < octaves);
   }
   return total > 0.0 ? sum / total : 0.0;
 }

@@ -122,10 +122,13 @@ vec2 opRepeatPolar(vec2 p, float n, out float cell) {
 // opRepeatPolar's cost on a CPU renderer. Other n fold too few times. as opRepeat
 vec2 opRepeatPolarMirror(vec2 p, int n) {
   p.y = abs(p.y);
-  for (int j = 1; j <= findMSB(n); ++j) {  // (a count, not a doubling: compilers unroll it)
-    float a = RM_PI / float(1 << j);  // the mirror's angle: a constant when n is
-    vec2 mirrorNormal = vec2(-sin(a), cos(a));
-    p -= 2.0 * max(dot(p, mirrorNormal), 0.0) * mirrorNormal;
+  int j = 1;
+  if (j <= findMSB(n)) {
+    do {  // a count, not a doubling: compilers unroll it; tested at the bottom (rm/common.glsl)
+      float a = RM_PI / float(1 << j);  // the mirror's angle: a constant when n is
+      vec2 mirrorNormal = vec2(-sin(a), cos(a));
+      p -= 2.0 * max(dot(p, mirrorNormal), 0.0) * mirrorNormal;
+    } while (++j <= findMSB(n));
   }
   return p;
 }

@@ -2,7 +2,8 @@
 // needs), compiles when its text appears twice (its include guard works even
 // where a tool does not include each file once), and documents itself: a
 // header naming the module, what it provides and needs, and one comment per
-// function, naming the distance class of every sd* function.
+// function, naming the distance class of every sd* function; and its loops
+// test at the bottom.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -104,6 +105,18 @@ TEST_P(Module, DocumentsEveryFunction) {
   }
   // Nothing seen means the patterns above failed, unless the module is macros only.
   EXPECT_TRUE(!seen.empty() || text.find("\n#define RM_") != std::string::npos) << "no functions found";
+}
+
+// Every loop tests at the bottom (rm/common.glsl says why): on llvmpipe a
+// loop tested at the top runs one more turn, with every lane masked off,
+// whenever its last lane leaves by that test.
+TEST_P(Module, LoopsTestAtTheBottom) {
+  const std::string text = module_text(GetParam());
+  static const std::regex top_tested(R"(\bfor \(|\bwhile \([^\n]*\) *\{)");
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number)
+    EXPECT_FALSE(std::regex_search(line, top_tested)) << GetParam() << ".glsl:" << number << ": " << line;
 }
 
 INSTANTIATE_TEST_SUITE_P(Shaderlib, Module, ::testing::ValuesIn(modules()),
