@@ -23,9 +23,13 @@
 #ifndef RM_SHADOW_STEPS
 #define RM_SHADOW_STEPS 64
 #endif
-// map() evaluations per ambient occlusion estimate (plus one).
+// map() evaluations per ambient occlusion estimate (plus one); 0 takes
+// none and leaves every point open.
 #ifndef RM_AO_SAMPLES
 #define RM_AO_SAMPLES 5
+#endif
+#if RM_AO_SAMPLES < 0 || RM_AO_SAMPLES > 32
+#error RM_AO_SAMPLES must be 0 to 32 (its taps are the bits of an int)
 #endif
 
 
@@ -206,6 +210,9 @@ float rmAoTapBlocked(float h, float d, float base) { return clamp((h - (d - base
 // ground, RM_GROUND) gives 0: map(p) there is the distance to the objects,
 // and subtracting it would close the hemisphere wherever they are far.
 float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
+#if RM_AO_SAMPLES == 0
+  return 1.0;  // no taps, nothing found in the way (the loops below run once at least)
+#else
   float base = surface;
   float blocked = 0.0;  // weighted share of each tap's distance that is blocked
   float total = 0.0;
@@ -251,6 +258,7 @@ float rmAmbientOcclusion(vec3 p, vec3 n, float surface) {
   } while (++i < RM_AO_SAMPLES);
 #endif
   return clamp(1.0 - 1.5 * blocked / total, 0.0, 1.0);
+#endif
 }
 
 // Ambient occlusion at a hit point p of map()'s surface, with unit normal n.

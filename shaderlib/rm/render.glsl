@@ -8,7 +8,7 @@
 //     (with RM_GRID_PERIOD: float mapCell(vec3 q, vec3 cell), rm/grid.glsl)
 //   RmMaterial material(vec3 p, vec3 n);  the look at hit point p, normal n
 //   with RM_GROUND:  RmMaterial groundMaterial(vec3 p);
-//   with RM_LIGHT_COUNT: RmLight light(int i) for i < RM_LIGHT_COUNT
+//   with RM_LIGHT_COUNT: RmLight light(int i) for i < RM_LIGHT_COUNT (0: ambient light only)
 //     (otherwise one white sun that a left-button drag moves, via iMouse);
 //   with RM_SCENE_BACKGROUND: vec3 background(vec3 rd).
 //   Includes rm/march, rm/normals, rm/lighting, rm/optics and rm/camera.
@@ -65,6 +65,12 @@
 #ifndef RM_REFRACTION
 #define RM_REFRACTION 0
 #endif
+#if RM_REFLECTIONS < 0
+#error RM_REFLECTIONS must be 0 or more
+#endif
+#if RM_REFRACTION < 0
+#error RM_REFRACTION must be 0 or more
+#endif
 // k of the soft shadows: larger is sharper.
 #ifndef RM_SHADOW_SHARPNESS
 #define RM_SHADOW_SHARPNESS 16.0
@@ -77,6 +83,9 @@
 #ifndef RM_SAMPLES
 #define RM_SAMPLES 1
 #endif
+#if RM_SAMPLES < 1
+#error RM_SAMPLES must be 1 or more (RM_SAMPLES x RM_SAMPLES rays a pixel)
+#endif
 // Sky light reaching every surface, before AO.
 #ifndef RM_AMBIENT
 #define RM_AMBIENT 0.12
@@ -88,6 +97,9 @@ RmMaterial groundMaterial(vec3 p);
 #endif
 
 #ifdef RM_LIGHT_COUNT
+#if RM_LIGHT_COUNT < 0
+#error RM_LIGHT_COUNT must be 0 (ambient light only) or more
+#endif
 RmLight light(int i);
 #else
 #define RM_LIGHT_COUNT 1
@@ -117,6 +129,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset, float sur
   occlusion = rmAmbientOcclusion(p, n, surface);
 #endif
   vec3 color = m.albedo * RM_AMBIENT * occlusion * (0.6 + 0.4 * n.y);
+#if RM_LIGHT_COUNT > 0
   int i = 0;
   do {  // tested at the bottom (rm/common.glsl)
     RmLight l = light(i);
@@ -148,6 +161,7 @@ vec3 rmDirectLight(vec3 p, vec3 n, vec3 v, RmMaterial m, float offset, float sur
 #endif
     color += rmShade(p, n, v, m, l, visible);
   } while (++i < RM_LIGHT_COUNT);
+#endif
   return color;
 }
 

@@ -4,6 +4,9 @@
 // defines the macro for it, and calls exactly that code when it does.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
+
 #include "core/check.h"
 #include "gpu/egl_fixture.h"
 #include "gpu/probe.h"
@@ -115,6 +118,35 @@ TEST(Quality, PresetsSetTheKnobsAndAnExplicitKnobWins) {
   EXPECT_EQ(both.find(" 64,"), std::string::npos) << both;
 }
 
+// A knob out of its range is an error at its check in shaderlib that names
+// the knob, not a picture of NaN: no rays a pixel, fewer than no lights or
+// bounces, AO taps beyond the bits of an int.
+TEST(Knobs, OutOfRangeIsAnErrorThatNamesTheKnob) {
+  struct Bad {
+    const char* name;
+    const char* value;
+    const char* module;
+  };
+  for (const Bad& bad : {Bad{"RM_SAMPLES", "0", "rm/render.glsl"}, Bad{"RM_LIGHT_COUNT", "-1", "rm/render.glsl"},
+                         Bad{"RM_REFLECTIONS", "-1", "rm/render.glsl"}, Bad{"RM_REFRACTION", "-2", "rm/render.glsl"},
+                         Bad{"RM_AO_SAMPLES", "-1", "rm/lighting.glsl"}, Bad{"RM_AO_SAMPLES", "33", "rm/lighting.glsl"}}) {
+    TempDir dir;
+    write_file(dir / "scene.frag", kScene);
+    SourceOptions options;
+    options.shaderlib_dir = shaderlib_dir();
+    options.defines = {{bad.name, bad.value}};
+    const Source source = preprocess(dir / "scene.frag", options);
+    ASSERT_TRUE(source.ok()) << join(source.errors);
+    const Diagnostics diags = validate(source);
+    const bool named = std::any_of(diags.begin(), diags.end(), [&](const Diagnostic& d) {
+      return d.severity == Severity::Error && d.path.size() >= std::strlen(bad.module) &&
+             d.path.compare(d.path.size() - std::strlen(bad.module), std::string::npos, bad.module) == 0 &&
+             d.line > 0 && d.message.find(std::string(bad.name) + " must") != std::string::npos;
+    });
+    EXPECT_TRUE(named) << bad.name << "=" << bad.value << ": " << join(diags);
+  }
+}
+
 // Run-time selection: map() evaluations per pixel, counted by the scene, for
 // rays at a mirror sphere (left) and a matte one (right) over a matte floor,
 // rendered with and without RM_REFLECTIONS / RM_REFRACTION / shadows. A pixel
@@ -213,6 +245,37 @@ TEST_F(EglTest, ShadowReachDecidesWhichOccludersCount) {
   EXPECT_LT(floor_light("", true), 0.5f * open) << "the ball casts no shadow with the default reach";
   EXPECT_LT(floor_light("#define RM_SHADOW_REACH 2.5\n", true), 0.5f * open) << "the ball is within the reach";
   EXPECT_EQ(floor_light("#define RM_SHADOW_REACH 1.5\n", true), open) << "the ball is beyond the reach";
+}
+
+// Zero of a count means none, as the controls panel's range allows:
+// RM_AO_SAMPLES 0 takes no taps and leaves a point open (the light of a scene
+// without RM_AO), and RM_LIGHT_COUNT 0 leaves the ambient term alone. A
+// point on the floor just under a ball, lit from straight above.
+TEST_F(EglTest, ZeroAoTapsAndZeroLightsMeanNone) {
+  auto at_floor = [](const std::string& defines) {
+    const std::string prelude = defines + R"(
+#include <rm/sdf.glsl>
+#include <rm/render.glsl>
+RmLight light(int i) { return rmDirectionalLight(vec3(0.0, 1.0, 0.0), vec3(1.0)); }
+float map(vec3 p) { return min(p.y, sdSphere(p - vec3(0.0, 0.6, 0.0), 0.5)); }
+RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.5)); }
+)";
+    std::string error;
+    auto got = probe(prelude,
+                     "vec4(rmDirectLight(vec3(0.2, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0), "
+                     "rmMaterial(vec3(0.5)), 1e-3).x, rmAmbientOcclusion(vec3(0.2, 0.0, 0.0), vec3(0.0, 1.0, 0.0)), 0.0, 0.0)",
+                     {glm::vec4(0)}, &error);
+    EXPECT_TRUE(got) << defines << error;
+    return got ? glm::vec2((*got)[0]) : glm::vec2(-1.0f);
+  };
+  const glm::vec2 occluded = at_floor("#define RM_LIGHT_COUNT 1\n#define RM_AO\n");
+  EXPECT_LT(occluded.y, 0.9f) << "the ball does not occlude the point: the test proves nothing";
+  const glm::vec2 no_taps = at_floor("#define RM_LIGHT_COUNT 1\n#define RM_AO\n#define RM_AO_SAMPLES 0\n");
+  EXPECT_EQ(no_taps.y, 1.0f);
+  EXPECT_EQ(no_taps.x, at_floor("#define RM_LIGHT_COUNT 1\n").x) << "not the light without RM_AO";
+  const float ambient = 0.5f * 0.12f;  // albedo x RM_AMBIENT, facing straight up, nothing occluding
+  EXPECT_NEAR(at_floor("#define RM_LIGHT_COUNT 0\n").x, ambient, 1e-6);
+  EXPECT_GT(at_floor("#define RM_LIGHT_COUNT 1\n").x, ambient + 0.4f);
 }
 
 // RM_BOUNDING_BOX_MIN/MAX: all of map()'s surface lies in the box. A ray
