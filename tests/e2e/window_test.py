@@ -587,16 +587,26 @@ def knob_session():
     wait_for(lambda: "twins built for generation 3" in open(err_path).read(), timeout=30)
     dragged = len(open(err_path).read())
     tweaks = lambda: re.findall(r"reload ok generation (\d+) \((\w+)", open(err_path).read()[dragged:])  # noqa: E731
-    xdotool("mousedown", "--window", window, 1)
+
+    def shown_between(low, high):
+        """The generation of the latest tweak to a value of RM_HIT_PIXELS in (low, high), once it is loaded."""
+        text = open(err_path).read()[dragged:]
+        values = [m for m in re.finditer(r"-D RM_HIT_PIXELS=(\S+)", text) if low < float(m.group(1)) < high]
+        loaded = re.search(r"reload ok generation (\d+) \(tweaked", text[values[-1].end():]) if values else None
+        return int(loaded.group(1)) if loaded else None
+
+    xdotool("mousedown", "--window", window, 1)  # at the slider's left end: 0, a tweak of its own
     # Not back to x + 25: the program of that value is cached, and is used.
-    for n, step in enumerate((15, 50), 1):
+    # Each move is waited for by its value (x + 15 is 1.4, x + 50 is 5.5),
+    # not by counting tweaks: the press's own may come before or after.
+    for step, low, high in ((15, 0.5, 2.0), (50, 2.0, 16.0)):
         xdotool("mousemove", "--window", window, str(x + step), str(y))
-        wait_for(lambda: len(tweaks()) >= n, timeout=30)
+        wait_for(lambda: shown_between(low, high), timeout=30)
     while_held = tweaks()
     xdotool("mouseup", "--window", window, 1)
     check("a float knob's later changes are number edits, shown while its slider is dragged",
           len(while_held) >= 2 and all(kind == "tweaked" for _, kind in while_held), open(err_path).read()[dragged:])
-    last = max((int(g) for g, _ in while_held), default=0)
+    last = shown_between(2.0, 16.0) or 0
     wait_for(lambda: f"presented generation {last}" in open(err_path).read(), timeout=30)
     shot = take_screenshot(window, out_path)
     steps = metadata(shot).get("raymarching:define:RM_MAX_STEPS") if shot else None
