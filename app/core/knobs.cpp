@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "core/check.h"
 
@@ -14,7 +15,7 @@ const std::vector<Knob>& knob_table() {
       {"RM_MAX_STEPS", "most map() calls per ray", true, 8.0f, 2000.0f, true},
       {"RM_MAX_DISTANCE", "farthest distance along a ray", false, 1.0f, 1000.0f, true},
       {"RM_OMEGA", "over-relaxation (1: plain)", false, 1.0f, 2.0f, false},
-      {"RM_NORMAL_TAPS", "normal taps: 4 or 6", true, 4.0f, 6.0f, false},
+      {"RM_NORMAL_TAPS", "normal taps: 4 or 6", true, 4.0f, 6.0f, false, 2},
       {"RM_NORMAL_EPSILON", "smallest normal step", false, 1e-7f, 1e-1f, true},
       {"RM_SHADOW_STEPS", "most map() calls per shadow ray", true, 1.0f, 512.0f, true},
       {"RM_SHADOW_SHARPNESS", "soft shadow k: larger is sharper", false, 1.0f, 128.0f, true},
@@ -24,6 +25,13 @@ const std::vector<Knob>& knob_table() {
       {"RM_SAMPLES", "supersampling, N x N rays", true, 1.0f, 8.0f, false},
   };
   return table;
+}
+
+float knob_snapped(const Knob& knob, float value) {
+  value = std::clamp(value, knob.min, knob.max);
+  if (!knob.integer) return value;
+  const float step = static_cast<float>(std::max(knob.step, 1));
+  return std::min(knob.min + step * std::round((value - knob.min) / step), knob.max);
 }
 
 const std::vector<const char*>& quality_presets() {

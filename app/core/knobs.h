@@ -15,10 +15,15 @@ struct Knob {
   bool integer;
   float min, max;    // the control's range; -D may go past it
   bool logarithmic;  // thresholds span decades
+  int step = 1;      // an integer knob's control: min, min + step, ... (RM_NORMAL_TAPS: 4 or 6)
 };
 
 // Every knob, in the order the panel lists them.
 const std::vector<Knob>& knob_table();
+
+// The value of `knob`'s control nearest `value`: within its range and, for
+// an integer knob, on its steps.
+float knob_snapped(const Knob& knob, float value);
 
 // The presets of --quality, as RM_QUALITY's values: "draft" -> "RM_DRAFT".
 const std::vector<const char*>& quality_presets();

@@ -201,7 +201,7 @@ void knob_controls(UiModel& model, UiChanges* changes) {
       if (knob.integer) {
         int i = static_cast<int>(std::lround(k.edit));
         ImGui::SliderInt(knob.name, &i, static_cast<int>(knob.min), static_cast<int>(knob.max), "%d", flags);
-        k.edit = static_cast<float>(i);
+        k.edit = knob_snapped(knob, static_cast<float>(i));  // RM_NORMAL_TAPS: 4 or 6, never 5
       } else {
         ImGui::SliderFloat(knob.name, &k.edit, knob.min, knob.max, "%g", flags);
       }

@@ -21,6 +21,9 @@
 #ifndef RM_NORMAL_TAPS
 #define RM_NORMAL_TAPS 4
 #endif
+#if RM_NORMAL_TAPS != 4 && RM_NORMAL_TAPS != 6
+#error RM_NORMAL_TAPS must be 4 (a tetrahedron) or 6 (central differences)
+#endif
 
 
 // Finite-difference step at p for a hit found within `tolerance`: it grows with

@@ -120,8 +120,9 @@ TEST(Quality, PresetsSetTheKnobsAndAnExplicitKnobWins) {
 
 // A knob out of its range is an error at its check in shaderlib that names
 // the knob, not a picture of NaN: no rays a pixel, fewer than no lights or
-// bounces, AO taps beyond the bits of an int.
-TEST(Knobs, OutOfRangeIsAnErrorThatNamesTheKnob) {
+// bounces, AO taps beyond the bits of an int, normal taps that are neither
+// method's (5 drew the 4 taps' normals).
+TEST(KnobChecks, OutOfRangeIsAnErrorThatNamesTheKnob) {
   struct Bad {
     const char* name;
     const char* value;
@@ -129,7 +130,8 @@ TEST(Knobs, OutOfRangeIsAnErrorThatNamesTheKnob) {
   };
   for (const Bad& bad : {Bad{"RM_SAMPLES", "0", "rm/render.glsl"}, Bad{"RM_LIGHT_COUNT", "-1", "rm/render.glsl"},
                          Bad{"RM_REFLECTIONS", "-1", "rm/render.glsl"}, Bad{"RM_REFRACTION", "-2", "rm/render.glsl"},
-                         Bad{"RM_AO_SAMPLES", "-1", "rm/lighting.glsl"}, Bad{"RM_AO_SAMPLES", "33", "rm/lighting.glsl"}}) {
+                         Bad{"RM_AO_SAMPLES", "-1", "rm/lighting.glsl"}, Bad{"RM_AO_SAMPLES", "33", "rm/lighting.glsl"},
+                         Bad{"RM_NORMAL_TAPS", "5", "rm/normals.glsl"}}) {
     TempDir dir;
     write_file(dir / "scene.frag", kScene);
     SourceOptions options;

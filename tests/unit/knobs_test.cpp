@@ -82,6 +82,26 @@ TEST(Knobs, ThoseAPresetSets) {
   EXPECT_TRUE(preset_knobs("reference", "/nonexistent").empty());
 }
 
+// A control gives only values its knob takes: RM_NORMAL_TAPS 4 or 6 (5 is
+// an error in rm/normals.glsl), integers on integers, all within the range.
+TEST(Knobs, ControlsStayOnTheirStepsAndInTheirRange) {
+  auto knob = [](const std::string& name) {
+    for (const Knob& k : knob_table())
+      if (name == k.name) return k;
+    ADD_FAILURE() << name;
+    return Knob{};
+  };
+  const Knob taps = knob("RM_NORMAL_TAPS"), steps = knob("RM_MAX_STEPS"), omega = knob("RM_OMEGA");
+  EXPECT_EQ(knob_snapped(taps, 4.4f), 4.0f);
+  EXPECT_EQ(knob_snapped(taps, 5.0f), 6.0f);
+  EXPECT_EQ(knob_snapped(taps, 3.0f), 4.0f);
+  EXPECT_EQ(knob_snapped(taps, 9.0f), 6.0f);
+  EXPECT_EQ(knob_snapped(steps, 37.4f), 37.0f);
+  EXPECT_EQ(knob_snapped(steps, 5000.0f), 2000.0f);
+  EXPECT_EQ(knob_snapped(omega, 1.37f), 1.37f);  // a float knob keeps its value
+  EXPECT_EQ(knob_snapped(omega, 3.0f), 2.0f);
+}
+
 TEST(Knobs, NoneWithoutShaderlib) { EXPECT_TRUE(knobs_of("#define RM_MAX_STEPS 5\n").empty()); }
 
 TEST(Knobs, WithDefineReplacesAndRemoves) {
