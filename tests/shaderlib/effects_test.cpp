@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 
 #include "core/check.h"
 #include "gpu/egl_fixture.h"
@@ -37,15 +36,21 @@ std::string body_of(const std::string& text, const std::string& name) {
   return "";
 }
 
-// The render path of kScene compiled with `defines`, as the compiler sees it.
-std::string render_path(const std::vector<Define>& defines) {
+// kScene with shaderlib and `defines`, its includes expanded.
+Source scene_source(const std::vector<Define>& defines) {
   TempDir dir;
   write_file(dir / "scene.frag", kScene);
   SourceOptions options;
   options.shaderlib_dir = shaderlib_dir();
   options.defines = defines;
-  const Source source = preprocess(dir / "scene.frag", options);
+  Source source = preprocess(dir / "scene.frag", options);
   EXPECT_TRUE(source.ok()) << join(source.errors);
+  return source;
+}
+
+// The render path of kScene compiled with `defines`, as the compiler sees it.
+std::string render_path(const std::vector<Define>& defines) {
+  const Source source = scene_source(defines);
   Diagnostics diags;
   const auto text = expand_preprocessor(source, &diags);
   EXPECT_TRUE(text) << join(diags);
@@ -101,13 +106,8 @@ INSTANTIATE_TEST_SUITE_P(
 // Presets set the knobs together; a knob given on its own wins.
 TEST(Quality, PresetsSetTheKnobsAndAnExplicitKnobWins) {
   auto settings = [](const std::vector<Define>& defines) {
-    TempDir dir;
-    write_file(dir / "scene.frag", kScene);
-    SourceOptions options;
-    options.shaderlib_dir = shaderlib_dir();
-    options.defines = defines;
     Diagnostics diags;
-    const auto text = expand_preprocessor(preprocess(dir / "scene.frag", options), &diags);
+    const auto text = expand_preprocessor(scene_source(defines), &diags);
     return body_of(text.value_or(""), "RmMarchSettings rmMarchSettings");
   };
   EXPECT_NE(settings({}).find("160"), std::string::npos) << settings({});
@@ -132,18 +132,12 @@ TEST(KnobChecks, OutOfRangeIsAnErrorThatNamesTheKnob) {
                          Bad{"RM_REFLECTIONS", "-1", "rm/render.glsl"}, Bad{"RM_REFRACTION", "-2", "rm/render.glsl"},
                          Bad{"RM_AO_SAMPLES", "-1", "rm/lighting.glsl"}, Bad{"RM_AO_SAMPLES", "33", "rm/lighting.glsl"},
                          Bad{"RM_NORMAL_TAPS", "5", "rm/normals.glsl"}}) {
-    TempDir dir;
-    write_file(dir / "scene.frag", kScene);
-    SourceOptions options;
-    options.shaderlib_dir = shaderlib_dir();
-    options.defines = {{bad.name, bad.value}};
-    const Source source = preprocess(dir / "scene.frag", options);
-    ASSERT_TRUE(source.ok()) << join(source.errors);
+    const Source source = scene_source({{bad.name, bad.value}});
+    ASSERT_TRUE(source.ok());
     const Diagnostics diags = validate(source);
     const bool named = std::any_of(diags.begin(), diags.end(), [&](const Diagnostic& d) {
-      return d.severity == Severity::Error && d.path.size() >= std::strlen(bad.module) &&
-             d.path.compare(d.path.size() - std::strlen(bad.module), std::string::npos, bad.module) == 0 &&
-             d.line > 0 && d.message.find(std::string(bad.name) + " must") != std::string::npos;
+      return d.severity == Severity::Error && d.path.ends_with(bad.module) && d.line > 0 &&
+             d.message.find(std::string(bad.name) + " must") != std::string::npos;
     });
     EXPECT_TRUE(named) << bad.name << "=" << bad.value << ": " << join(diags);
   }
