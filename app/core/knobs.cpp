@@ -31,7 +31,8 @@ float knob_snapped(const Knob& knob, float value) {
   value = std::clamp(value, knob.min, knob.max);
   if (!knob.integer) return value;
   const float step = static_cast<float>(std::max(knob.step, 1));
-  return std::min(knob.min + step * std::round((value - knob.min) / step), knob.max);
+  const float snapped = knob.min + step * std::round((value - knob.min) / step);
+  return snapped > knob.max ? snapped - step : snapped;  // the last step, not max itself, where max is off the steps
 }
 
 const std::vector<const char*>& quality_presets() {
