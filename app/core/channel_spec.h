@@ -43,6 +43,9 @@ struct ChannelSpec {
   std::filesystem::path path;  // Image and Pass: absolute
   Sampler sampler;
   int cube_size = 0;  // a Cube A pass's face size when the pragma gives one; 0: the default
+  // A sampler of the shader's own that the channel binds too, besides
+  // iChannelN and u_texN: glslViewer's u_buffer0 (core/glslviewer_buffers.h).
+  std::string sampler_name;
   bool operator==(const ChannelSpec&) const = default;
 };
 

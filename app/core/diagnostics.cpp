@@ -65,6 +65,11 @@ int count_errors(const Diagnostics& diags) {
   }));
 }
 
+void append_new(Diagnostics* to, const Diagnostics& more) {
+  for (const Diagnostic& d : more)
+    if (std::find(to->begin(), to->end(), d) == to->end()) to->push_back(d);
+}
+
 std::string join(const Diagnostics& diags) {
   std::string out;
   for (const auto& d : diags) out += d.str() + '\n';

@@ -18,6 +18,7 @@ struct Diagnostic {
   int line = 0;      // 1-based; 0 when the message has no line (link errors)
   int column = 0;    // 1-based; 0 when unknown
   std::string message;
+  bool operator==(const Diagnostic&) const = default;
 
   // "path:line:col" (only what is known; "raymarching" for no path).
   std::string place() const;
@@ -30,6 +31,9 @@ struct Diagnostic {
 using Diagnostics = std::vector<Diagnostic>;
 
 int count_errors(const Diagnostics& diags);
+// Appends those of `more` that `to` does not hold yet: the passes that draw
+// one file (glslViewer's buffers) find the same problems in the code they share.
+void append_new(Diagnostics* to, const Diagnostics& more);
 std::string printable(std::string_view text);  // text with \xNN for what str() escapes
 std::string join(const Diagnostics& diags);  // one diagnostic per line
 

@@ -165,6 +165,7 @@ FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<Channe
     const GLenum target = kTargets[shape_index(spec.shape)];
     in.texture = black_[shape_index(spec.shape)].get();
     in.sampler = sampler_for(spec.sampler);
+    in.sampler_name = spec.sampler_name;
     switch (spec.kind) {
       case ChannelSpec::Kind::Image: {
         const auto image = held.find(ImageTextures::key_of(spec));
@@ -193,6 +194,7 @@ ChannelInputs FrameGraph::inputs_of(const Project& project, size_t pass) const {
     ChannelInput& in = inputs[c];
     in.texture = black_[shape_index(spec.shape)].get();
     in.sampler = sampler_for(spec.sampler);
+    in.sampler_name = spec.sampler_name;
     switch (spec.kind) {
       case ChannelSpec::Kind::Image:
         // update() read it; an image that failed reads black.

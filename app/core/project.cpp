@@ -94,7 +94,7 @@ PassWalk walk_passes(const fs::path& image, const std::function<VisitedPass(cons
     for (size_t c = 0; c < 4; ++c)
       bound[c] = source->channels[c].kind != ChannelSpec::Kind::None || (i == 0 && image_channels_given[c]);
     const Diagnostics unbound = unbound_channel_reads(*source, bound, visited.active);
-    diags->insert(diags->end(), unbound.begin(), unbound.end());
+    append_new(diags, unbound);
     if (i == 0 && source->cubemap)
       graph_error(image, "the image pass defines mainCubemap: open the pass that reads the cube map");
     for (const ChannelSpec& channel : source->channels) {
@@ -139,7 +139,7 @@ Source check_project(const ProjectFiles& from, const SourceOptions& options, Dia
       [&](const fs::path& file) -> VisitedPass {
         Diagnostics found;
         Source source = check_scene(file, with_common, &found, from.files, &active[file]);
-        diags->insert(diags->end(), found.begin(), found.end());
+        append_new(diags, found);
         if (count_errors(found) > 0) return {};
         return {&(sources[file] = std::move(source)), active[file]};
       },
@@ -182,7 +182,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
         }
         if (status == ReloadStatus::Swapped) swapped.push_back(file);
         const Diagnostics& diags = scene.latest_diagnostics();
-        diagnostics_.insert(diagnostics_.end(), diags.begin(), diags.end());
+        append_new(&diagnostics_, diags);
         changed = changed || status == ReloadStatus::Swapped;
         // Unchanged since a failed attempt is still failed.
         if (status == ReloadStatus::Failed || (status == ReloadStatus::Unchanged && count_errors(diags) > 0) ||
@@ -237,7 +237,7 @@ Diagnostics Project::latest_diagnostics() const {
   Diagnostics out = files_.warnings ? files_.warnings() : Diagnostics{};
   for (const Pass& pass : passes_) {
     const Diagnostics& diags = pass.scene->latest_diagnostics();
-    out.insert(out.end(), diags.begin(), diags.end());
+    append_new(&out, diags);
   }
   return out;
 }
@@ -337,11 +337,16 @@ std::array<ChannelSpec, 4> Project::channels_of(const fs::path& file, const Sour
       spec.path = file;
     }
     // A --channelN file takes the place of what the image pass names, read
-    // as the same shape (a cube map stays a cube map: the shader samples one).
-    if (file == image_path_ && !channel_overrides_[c].empty()) {
+    // as the same shape (a cube map stays a cube map: the shader samples one),
+    // but not of a glslViewer buffer, which the code reads by its own name:
+    // it took a channel the code does not read as u_texN.
+    if (file == image_path_ && !channel_overrides_[c].empty() && spec.sampler_name.empty()) {
       const ChannelSpec::Shape shape = spec.kind == ChannelSpec::Kind::Keyboard ? ChannelSpec::Shape::Flat : spec.shape;
-      spec = ChannelSpec{ChannelSpec::Kind::Image, shape, channel_overrides_[c],
-                         default_sampler(ChannelSpec::Kind::Image, shape)};
+      spec = ChannelSpec{};
+      spec.kind = ChannelSpec::Kind::Image;
+      spec.shape = shape;
+      spec.path = channel_overrides_[c];
+      spec.sampler = default_sampler(ChannelSpec::Kind::Image, shape);
     }
   }
   return channels;

@@ -73,6 +73,9 @@ void bind_channels(const Program& program, const ChannelInputs& channels) {
   glBindSampler(kNothingBoundUnit, 0);
   for (const auto& [name, uniform] : program.uniforms())
     if (uniform.sampler && channel_of_sampler(name) < 0) program.set_sampler(name, kNothingBoundUnit);
+  for (int i = 0; i < 4; ++i)
+    if (const std::string& name = channels[static_cast<size_t>(i)].sampler_name; !name.empty())
+      program.set_sampler(name, i);
 }
 
 void warm_up(const Program& program, GLenum format, const ChannelInputs& channels) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -43,6 +44,7 @@ struct ChannelInput {
   GLuint texture = 0;  // 0: nothing bound (the graph binds a transparent black texel instead)
   GLuint sampler = 0;  // filter and wrap; 0: the texture's own
   glm::vec3 resolution{0.0f};
+  std::string sampler_name;  // the spec's: a sampler of the shader's own it binds too
 };
 using ChannelInputs = std::array<ChannelInput, 4>;
 
@@ -51,9 +53,9 @@ using ChannelInputs = std::array<ChannelInput, 4>;
 void set_sampling_state();
 
 // Binds each channel's texture and sampler to its unit and points the
-// program's iChannelN (and u_texN) at it. Any other sampler the shader
-// declares (glslViewer's u_buffer0, which this host draws nothing for) reads
-// kNothingBoundUnit, where no texture is: black, not iChannel0 by default.
+// program's iChannelN (and u_texN, and its sampler_name) at it. Any other
+// sampler the shader declares reads kNothingBoundUnit, where no texture is:
+// black, not iChannel0 by default.
 constexpr int kNothingBoundUnit = 4;
 void bind_channels(const Program& program, const ChannelInputs& channels);
 

@@ -9,6 +9,7 @@
 #include "core/check.h"
 #include "core/dialect_names.h"
 #include "core/files.h"
+#include "core/glslviewer_buffers.h"
 #include "core/host_inputs.h"
 #include "core/lexing.h"
 
@@ -156,6 +157,30 @@ void for_each_line(std::string_view text, Line line) {
   }
 }
 
+// The name `line` declares a sampler by (`uniform [precision] samplerXX
+// NAME`: the code's own sampler, and glslViewer's u_texN and u_buffer0), or
+// nullopt. `line` has no comments.
+std::optional<std::string_view> declared_sampler(std::string_view line) {
+  std::vector<std::string_view> words;
+  lexing::any_word(line, [&](size_t begin, size_t end) {
+    words.push_back(line.substr(begin, end - begin));
+    return words.size() >= 4;
+  });
+  if (words.size() < 3 || words[0] != "uniform") return std::nullopt;
+  const size_t type = lexing::is_precision(words[1]) ? 2 : 1;
+  if (type + 1 >= words.size() || words[type].find("sampler") > 1) return std::nullopt;  // sampler2D, isampler3D
+  return words[type + 1];
+}
+
+int count_word(std::string_view text, std::string_view word) {
+  int count = 0;
+  lexing::any_word(text, [&](size_t begin, size_t end) {
+    count += text.substr(begin, end - begin) == word;
+    return false;
+  });
+  return count;
+}
+
 struct IncludeDirective {
   bool angled = false;
   std::string target;
@@ -254,6 +279,10 @@ class Preprocessor {
 
   Source run(const fs::path& scene) {
     fs::path first = fs::absolute(scene).lexically_normal();
+    if (std::optional<GlslViewerPass> pass = glslviewer_pass_of(first)) {
+      first = pass->file;
+      pass_define_ = pass->define;
+    }
     out_.watch.push_back(first);
     include_file(first, /*from*/ -1, 0, 0);
     if (!out_.ok()) return std::move(out_);
@@ -519,9 +548,7 @@ class Preprocessor {
     // Real Shadertoy shaders carry a main() for other hosts in an inactive
     // #ifdef: with both, the kind is decided on what the compiler would see.
     if (has_main && has_main_image) {
-      std::string defined = std::string(kHostVersionLine) + "\n" + hw_performance_define();
-      for (const auto& d : options_.defines) defined += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
-      if (auto text = active_code(defined + body_)) {
+      if (auto text = active_code(defines_text() + body_)) {
         active = std::move(*text);
         code = active;
         has_main = lexing::has_call(code, "main", "void");
@@ -558,6 +585,7 @@ class Preprocessor {
     int define_index = 0;
     for (const auto& d : options_.defines)
       emit("#define " + d.name + " " + (d.value.empty() ? "1" : d.value), Origin{kCommandLineFile, ++define_index});
+    if (!pass_define_.empty()) emit_host("#define " + pass_define_);
     if (keep_version && version_->es()) emit_host("precision highp float;\nprecision highp int;");
 
     if (out_.kind == ShaderKind::Shadertoy) {
@@ -582,6 +610,62 @@ class Preprocessor {
     out_.text += body_;
     out_.line_map.insert(out_.line_map.end(), body_map_.begin(), body_map_.end());
     if (out_.kind == ShaderKind::Shadertoy) emit_host(out_.cubemap ? kCubemapMain : kShadertoyMain);
+    else bind_glslviewer_buffers(body_code);
+  }
+
+  // The lines the compiler's text starts with, before the body: what decides
+  // its #if branches.
+  std::string defines_text() const {
+    std::string text = std::string(kHostVersionLine) + "\n" + hw_performance_define();
+    for (const auto& d : options_.defines) text += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
+    if (!pass_define_.empty()) text += "#define " + pass_define_ + "\n";
+    return text;
+  }
+
+  // glslViewer's buffers (core/glslviewer_buffers.h): each buffer sampler
+  // that this pass's code reads, in the #if branches its defines take, is
+  // bound on a channel the code leaves free (from 3 down) to the pass that
+  // draws the file with that buffer's define.
+  void bind_glslviewer_buffers(std::string_view body_code) {
+    struct Declared {
+      std::string name;
+      Origin at;       // its declaration's line
+      int column = 0;  // 1-based
+    };
+    std::vector<Declared> declared;
+    for_each_line(body_code, [&](std::string_view line, int number) {
+      if (const auto name = declared_sampler(line); name && !glslviewer_buffer_define(*name).empty())
+        declared.push_back({std::string(*name), body_map_[static_cast<size_t>(number - 1)],
+                            static_cast<int>(lexing::find_word(line, *name).value_or(0)) + 1});
+      return true;
+    });
+    if (declared.empty()) return;
+    const std::optional<std::string> active = active_code(defines_text() + body_);
+    const std::string_view reads = active ? std::string_view(*active) : body_code;
+    auto free_channel = [&]() -> int {
+      for (int c = 3; c >= 0; --c)
+        if (out_.channels[static_cast<size_t>(c)].kind == ChannelSpec::Kind::None &&
+            !lexing::has_word(body_code, "u_tex" + std::to_string(c)) &&
+            !lexing::has_word(body_code, "iChannel" + std::to_string(c)))
+          return c;
+      return -1;
+    };
+    const fs::path file = out_.files.front();
+    for (const Declared& d : declared) {
+      if (count_word(reads, d.name) < 2) continue;  // declared, and not read here
+      const int channel = free_channel();
+      if (channel < 0) {
+        error(d.at.file, d.at.line, d.column,
+              "'" + d.name + "' is read, and glslViewer's " + glslviewer_buffer_define(d.name) +
+                  " pass it reads needs a channel of its own, but the code takes all four (iChannel0-3, u_tex0-3 "
+                  "and #pragma channelN)");
+        continue;
+      }
+      out_.channels[static_cast<size_t>(channel)] =
+          ChannelSpec{ChannelSpec::Kind::Pass, ChannelSpec::Shape::Flat,
+                      glslviewer_pass(file, glslviewer_buffer_define(d.name)),
+                      Sampler{Sampler::Filter::Linear, Sampler::Wrap::Clamp, false}, 0, d.name};
+    }
   }
 
   const SourceOptions& options_;
@@ -597,6 +681,7 @@ class Preprocessor {
   Origin version_origin_;
   int host_lines_ = 0;
   bool in_dropped_define_ = false;  // the last line was a dropped #define ending in a backslash
+  std::string pass_define_;  // a glslViewer buffer pass's (BUFFER_0), or empty
 };
 
 }  // namespace
@@ -657,21 +742,12 @@ struct StraySampler {
 };
 
 // What a read of a sampler no channel binds gets, and why: glslViewer's
-// buffer, double buffer and scene samplers name passes this host does not draw.
+// scene samplers name a pass this host does not draw.
 std::string stray_sampler_message(const std::string& name) {
-  auto glslviewer_pass = [&](std::string_view prefix, std::string_view define) -> std::string {
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
-        !lexing::is_digit(name[prefix.size()]))
-      return "";
-    return std::string(define) + name.substr(prefix.size());
-  };
-  std::string pass = glslviewer_pass("u_buffer", "BUFFER_");
-  if (pass.empty()) pass = glslviewer_pass("u_doubleBuffer", "DOUBLE_BUFFER_");
-  if (pass.empty() && (name == "u_scene" || name == "u_sceneDepth")) pass = "POSTPROCESSING";
-  if (!pass.empty())
-    return "'" + name + "' is read, but this host does not draw glslViewer's " + pass +
-           " pass, so it reads black (a buffer here is a file of its own: #pragma channelN \"FILE\" binds it to "
-           "iChannelN, or u_texN)";
+  if (name == "u_scene" || name == "u_sceneDepth")
+    return "'" + name + "' is read, but this host does not draw glslViewer's POSTPROCESSING pass, so it reads "
+           "black (a buffer here is a pass of its own: u_buffer0 with #ifdef BUFFER_0, or a file that #pragma "
+           "channelN \"FILE\" binds to iChannelN, or u_texN)";
   return "'" + name + "' is read, but the host binds nothing to it, so it reads black (it binds iChannel0-3 "
          "and u_tex0-3, to what #pragma channelN \"FILE\" names)";
 }
@@ -727,20 +803,16 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
     }
     return true;
   });
+  auto bound_by_name = [&](const std::string& name) {
+    return std::any_of(source.channels.begin(), source.channels.end(),
+                       [&](const ChannelSpec& c) { return c.sampler_name == name; });
+  };
   for_each_line(code, [&](std::string_view line, int number) {
     if (!own_line(number)) return true;
-    // uniform [precision] samplerXX NAME: the code's own sampler, and glslViewer's u_texN.
-    std::vector<std::string_view> words;
-    lexing::any_word(line, [&](size_t begin, size_t end) {
-      words.push_back(line.substr(begin, end - begin));
-      return words.size() >= 4;
-    });
-    if (words.size() < 3 || words[0] != "uniform") return true;
-    const size_t type = lexing::is_precision(words[1]) ? 2 : 1;
-    if (type + 1 >= words.size()) return true;
-    const size_t sampler_at = words[type].find("sampler");
-    const std::string name(words[type + 1]);
-    if (sampler_at > 1 || stray_index.count(name)) return true;  // sampler2D, isampler3D, usamplerCube
+    const std::optional<std::string_view> declared = declared_sampler(line);
+    if (!declared) return true;
+    const std::string name(*declared);
+    if (stray_index.count(name) || bound_by_name(name)) return true;
     const int channel = channel_of_sampler(name);
     if (channel >= 0 && (name[0] == 'i' || bound[static_cast<size_t>(channel)])) return true;
     stray_index[name] = strays.size();

@@ -133,20 +133,18 @@ TEST_F(Cli, OnlyAReadTheCompilerSeesWarnsOfAnUnboundChannel) {
 }
 
 // A sampler the code declares and reads that no channel binds (glslViewer's
-// buffer passes, which this host does not draw, or a name of its own) is one
-// warning at its declaration, and reads black, not iChannel0's texture, which
-// every sampler read by default. A sampler declared and not read says nothing.
+// postprocessing pass, which this host does not draw, or a name of its own)
+// is one warning at its declaration, and reads black, not iChannel0's
+// texture, which every sampler read by default. A sampler declared and not
+// read says nothing.
 TEST_F(Cli, ASamplerNoChannelBindsIsAWarningAndReadsBlack) {
   write_file(dir_ / "gv.frag",
              "#ifdef GL_ES\nprecision mediump float;\n#endif\n"
-             "uniform sampler2D u_buffer0;\nuniform sampler2D   u_doubleBuffer1; // ping-pong\n"
              "uniform highp sampler2D u_scene;\nuniform sampler2D myTex;\nuniform sampler2D unused;\n"
              "uniform sampler2D u_tex0;\nuniform sampler2D u_tex1;\nuniform vec2 u_resolution;\n"
-             "void main() {\n  vec2 st = gl_FragCoord.xy / u_resolution;\n#ifdef BUFFER_0\n"
-             "  gl_FragColor = vec4(1.0);\n#else\n"
-             "  gl_FragColor = texture2D(u_buffer0, st) + texture2D(u_doubleBuffer1, st) + texture2D(u_scene, st)\n"
-             "               + texture2D(myTex, st) + 0.25 * texture2D(u_tex0, st) + texture2D(u_tex1, st);\n"
-             "#endif\n}\n");
+             "void main() {\n  vec2 st = gl_FragCoord.xy / u_resolution;\n"
+             "  gl_FragColor = texture2D(u_scene, st) + texture2D(myTex, st) + 0.25 * texture2D(u_tex0, st)\n"
+             "               + texture2D(u_tex1, st);\n}\n");
   const std::string scene = (dir_ / "gv.frag").string();
   auto image = OIIO::ImageOutput::create("white.png");
   const std::vector<unsigned char> white(4 * 4 * 3, 255);
@@ -155,23 +153,94 @@ TEST_F(Cli, ASamplerNoChannelBindsIsAWarningAndReadsBlack) {
   image->close();
   const test::Outcome r = run("check " + scene);
   EXPECT_EQ(r.status, 0);
-  const std::string buffer = " pass, so it reads black (a buffer here is a file of its own: #pragma channelN \"FILE\" "
-                             "binds it to iChannelN, or u_texN)\n";
   EXPECT_EQ(r.err,
-            scene + ":4:19: warning: 'u_buffer0' is read, but this host does not draw glslViewer's BUFFER_0" + buffer +
-                scene + ":5:21: warning: 'u_doubleBuffer1' is read, but this host does not draw glslViewer's "
-                        "DOUBLE_BUFFER_1" +
-                buffer + scene + ":6:25: warning: 'u_scene' is read, but this host does not draw glslViewer's "
-                                 "POSTPROCESSING" +
-                buffer + scene +
-                ":7:19: warning: 'myTex' is read, but the host binds nothing to it, so it reads black (it binds "
+            scene + ":4:25: warning: 'u_scene' is read, but this host does not draw glslViewer's POSTPROCESSING "
+                    "pass, so it reads black (a buffer here is a pass of its own: u_buffer0 with #ifdef BUFFER_0, "
+                    "or a file that #pragma channelN \"FILE\" binds to iChannelN, or u_texN)\n" +
+                scene +
+                ":5:19: warning: 'myTex' is read, but the host binds nothing to it, so it reads black (it binds "
                 "iChannel0-3 and u_tex0-3, to what #pragma channelN \"FILE\" names)\n" +
-                scene + ":9:19: warning: u_tex0 is read but nothing is bound to it, so it reads transparent black "
+                scene + ":7:19: warning: u_tex0 is read but nothing is bound to it, so it reads transparent black "
                         "(#pragma channel0 \"FILE\" names an input)\n" +
-                scene + ":10:19: warning: u_tex1 is read but nothing is bound to it, so it reads transparent black "
+                scene + ":8:19: warning: u_tex1 is read but nothing is bound to it, so it reads transparent black "
                         "(#pragma channel1 \"FILE\" names an input)\n");
   // With white on channel 0, only u_tex0's quarter shows.
   EXPECT_NEAR(red_of(scene, " --channel0 " + (dir_ / "white.png").string()), 0.25f, 0.01f);
+}
+
+// glslViewer's buffers, from one file: u_buffer0 reads what the file draws
+// with BUFFER_0 defined, this frame; u_doubleBuffer0 what it draws with
+// DOUBLE_BUFFER_0, which reads its own previous frame. Each is a pass of the
+// graph, on a channel the code leaves free (u_tex0 keeps channel 0, and
+// --channel0 binds it; --channel3 does not replace u_buffer0 there), and a
+// problem in code two buffers compile names its line once.
+TEST_F(Cli, GlslViewerBuffersAreDrawnAsPassesOfTheirOwn) {
+  const std::string code =
+      "uniform sampler2D u_buffer0;\nuniform sampler2D u_doubleBuffer0;\nuniform sampler2D u_tex0;\n"
+      "uniform vec2 u_resolution;\n"
+      "void main() {\n"
+      "#if defined(BUFFER_0)\n"
+      "  gl_FragColor = vec4(0.5, 0.25, 0.0, 1.0);\n"
+      "#elif defined(DOUBLE_BUFFER_0)\n"
+      "  gl_FragColor = texture2D(u_doubleBuffer0, gl_FragCoord.xy / u_resolution) + vec4(0.125);\n"
+      "#else\n"
+      "  vec2 st = gl_FragCoord.xy / u_resolution;\n"
+      "  gl_FragColor = vec4(texture2D(u_buffer0, st).rg, texture2D(u_doubleBuffer0, st).r,\n"
+      "                      texture2D(u_tex0, st).r);\n"
+      "#endif\n}\n";
+  write_file(dir_ / "buffers.frag", code);
+  const std::string scene = (dir_ / "buffers.frag").string();
+  EXPECT_EQ(run("check " + scene).err,
+            scene + ":3:19: warning: u_tex0 is read but nothing is bound to it, so it reads transparent black "
+                    "(#pragma channel0 \"FILE\" names an input)\n");
+  auto image = OIIO::ImageOutput::create("white.png");
+  const std::vector<unsigned char> white(4 * 4 * 3, 255);
+  ASSERT_TRUE(image && image->open((dir_ / "white.png").string(), OIIO::ImageSpec(4, 4, 3, OIIO::TypeDesc::UINT8)));
+  image->write_image(OIIO::TypeDesc::UINT8, white.data());
+  image->close();
+  for (int frame : {0, 3}) {
+    const test::Outcome r = run("render " + scene + " -o " + (dir_ / "b.exr").string() + " --size 4x4 --frame " +
+                                std::to_string(frame) + " --channel0 " + (dir_ / "white.png").string() +
+                                " --channel3 " + (dir_ / "white.png").string());  // u_buffer0's channel: kept
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<float> px = test::read_pixels(dir_ / "b.exr");
+    ASSERT_EQ(px.size(), 64u);
+    for (size_t i = 0; i < px.size(); i += 4) {
+      EXPECT_FLOAT_EQ(px[i], 0.5f) << frame;
+      EXPECT_FLOAT_EQ(px[i + 1], 0.25f) << frame;
+      EXPECT_FLOAT_EQ(px[i + 2], 0.125f * static_cast<float>(frame + 1)) << frame;  // frames 0..frame drawn
+      EXPECT_FLOAT_EQ(px[i + 3], 1.0f) << frame;
+    }
+  }
+  // An error in code that both buffers compile, and the image does not, is
+  // said once, at its line.
+  std::string broken = code;
+  broken.insert(broken.find("void main()"),
+                "#if defined(BUFFER_0) || defined(DOUBLE_BUFFER_0)\nvec4 shared() { return vec3(0.5); }\n#endif\n");
+  write_file(dir_ / "buffers.frag", broken);
+  const test::Outcome r = run("check " + scene);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, scene + ":3:19: warning: u_tex0 is read but nothing is bound to it, so it reads transparent "
+                           "black (#pragma channel0 \"FILE\" names an input)\n" +
+                       scene + ":6:17: error: 'return' : cannot convert return value to function return type\n");
+}
+
+// A buffer's pass takes a channel the code leaves free; with all four read
+// (u_tex0-3), there is none, and that is an error at the buffer's declaration.
+TEST_F(Cli, AGlslViewerBufferWithNoChannelFreeIsAnError) {
+  write_file(dir_ / "full.frag",
+             "uniform sampler2D u_tex0, u_tex1;\nuniform sampler2D u_tex2;\nuniform sampler2D u_tex3;\n"
+             "uniform sampler2D u_buffer0;\n"
+             "void main() {\n#ifdef BUFFER_0\n  gl_FragColor = vec4(1.0);\n#else\n"
+             "  gl_FragColor = texture2D(u_tex0, vec2(0.5)) + texture2D(u_tex1, vec2(0.5)) +\n"
+             "      texture2D(u_tex2, vec2(0.5)) + texture2D(u_tex3, vec2(0.5)) + texture2D(u_buffer0, vec2(0.5));\n"
+             "#endif\n}\n");
+  const std::string scene = (dir_ / "full.frag").string();
+  const test::Outcome r = run("check " + scene);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, scene + ":4:19: error: 'u_buffer0' is read, and glslViewer's BUFFER_0 pass it reads needs a "
+                           "channel of its own, but the code takes all four (iChannel0-3, u_tex0-3 and #pragma "
+                           "channelN)\n");
 }
 
 // render draws a shader's HW_PERFORMANCE == 1 branch on any renderer (the

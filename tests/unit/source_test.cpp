@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "core/files.h"
+#include "core/glslviewer_buffers.h"
 #include "support.h"
 
 namespace rm {
@@ -239,6 +240,55 @@ TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
   EXPECT_EQ(s.version_line, "#version 450 core");
   EXPECT_NE(s.text.find("#define gl_FragColor rm_FragColor"), std::string::npos);
   EXPECT_EQ(origin_of(s, "void main()").second, 5);
+}
+
+// glslViewer's buffer passes are paths of their own: the file's, with the define.
+TEST(GlslViewerBuffers, APassPathNamesItsFileAndDefine) {
+  EXPECT_EQ(glslviewer_pass("/a/s.frag", "BUFFER_0"), fs::path("/a/s.frag#BUFFER_0"));
+  const std::optional<GlslViewerPass> pass = glslviewer_pass_of("/a/s.frag#DOUBLE_BUFFER_12");
+  ASSERT_TRUE(pass);
+  EXPECT_EQ(pass->file, fs::path("/a/s.frag"));
+  EXPECT_EQ(pass->define, "DOUBLE_BUFFER_12");
+  for (const char* other :
+       {"/a/s.frag", "/a/s.frag#FOO_0", "/a/s#BUFFER_0/t.frag", "/a/s.frag#BUFFER_", "/a/#BUFFER_0"})
+    EXPECT_FALSE(glslviewer_pass_of(other)) << other;
+  EXPECT_EQ(glslviewer_buffer_define("u_buffer0"), "BUFFER_0");
+  EXPECT_EQ(glslviewer_buffer_define("u_doubleBuffer15"), "DOUBLE_BUFFER_15");
+  for (const char* other : {"u_buffer", "u_buffer0Resolution", "u_tex0", "u_scene", "buffer0"})
+    EXPECT_EQ(glslviewer_buffer_define(other), "") << other;
+}
+
+// Each buffer sampler a pass reads, in the #if branches its defines take,
+// is bound on a free channel (from 3 down; u_tex1 keeps 1) to its pass; the
+// pass that draws the file with BUFFER_0 has that define, after the -D ones.
+TEST(Source, GlslViewerBufferReadsBindAFreeChannelToTheirPass) {
+  TempDir dir;
+  write_file(dir / "gv.frag",
+             "uniform sampler2D u_buffer0;\nuniform sampler2D u_doubleBuffer1;\nuniform sampler2D u_buffer2;\n"
+             "uniform sampler2D u_tex1;\n#pragma channel2 \"rock.png\"\n"
+             "void main() {\n#ifdef BUFFER_0\n  gl_FragColor = texture2D(u_doubleBuffer1, vec2(0.5));\n#else\n"
+             "  gl_FragColor = texture2D(u_buffer0, vec2(0.5)) + texture2D(u_tex1, vec2(0.5));\n#endif\n}\n");
+  write_file(dir / "rock.png", "");
+  const fs::path file = fs::absolute(dir / "gv.frag").lexically_normal();
+  const Source image = preprocess(file, {});
+  ASSERT_TRUE(image.ok()) << join(image.errors);
+  EXPECT_EQ(image.channels[3].kind, ChannelSpec::Kind::Pass);
+  EXPECT_EQ(image.channels[3].path, glslviewer_pass(file, "BUFFER_0"));
+  EXPECT_EQ(image.channels[3].sampler_name, "u_buffer0");
+  EXPECT_EQ(image.channels[3].sampler, (Sampler{Sampler::Filter::Linear, Sampler::Wrap::Clamp, false}));
+  EXPECT_EQ(image.channels[0].kind, ChannelSpec::Kind::None);  // u_doubleBuffer1 and u_buffer2 are not read here
+  EXPECT_EQ(image.channels[2].kind, ChannelSpec::Kind::Image);  // the pragma's
+  SourceOptions options;
+  options.defines = {{"A", "2"}};
+  const Source buffer = preprocess(glslviewer_pass(file, "BUFFER_0"), options);
+  ASSERT_TRUE(buffer.ok()) << join(buffer.errors);
+  EXPECT_EQ(buffer.files.front(), file);
+  EXPECT_LT(buffer.text.find("#define A 2\n"), buffer.text.find("#define BUFFER_0\n"));
+  EXPECT_EQ(buffer.channels[3].path, glslviewer_pass(file, "DOUBLE_BUFFER_1"));
+  EXPECT_EQ(buffer.channels[3].sampler_name, "u_doubleBuffer1");
+  EXPECT_EQ(buffer.channels[0].kind, ChannelSpec::Kind::None);
+  EXPECT_EQ(origin_of(buffer, "gl_FragColor = texture2D(u_doubleBuffer1"), std::make_pair(file.string(), 8));
+  EXPECT_EQ(join(validate(buffer)), "");
 }
 
 // GLSL 1.10's sampling functions, each form of each, on a 4.50 core profile.
