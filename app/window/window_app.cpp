@@ -28,6 +28,7 @@
 #include "core/gl_census.h"
 #include "core/gl_debug.h"
 #include "core/glslang_client.h"
+#include "core/glslviewer_buffers.h"
 #include "core/views.h"
 #include "core/stop_signals.h"
 #include "core/wake_on_readable.h"
@@ -972,12 +973,15 @@ class WindowApp {
 
   // The watchdog: a shader whose smallest tile takes longer than the limit
   // is not drawn again until a save replaces it; the picture stays as it is.
+  // A glslViewer buffer's pass is named by its file and its define.
   void report_too_slow(const fs::path& file, glm::ivec4 tile, double ms) {
+    const std::optional<GlslViewerPass> buffer = glslviewer_pass_of(file);
     char message[200];
     std::snprintf(message, sizeof message,
                   "too slow: a %dx%d tile took %.2f s (--tile-limit %g s); not drawn again until the next save",
                   tile.z, tile.w, ms / 1000.0, options_.tile_limit_s);
-    const Diagnostic too_slow{Severity::Error, file.string(), 0, 0, message};
+    const Diagnostic too_slow{Severity::Error, (buffer ? buffer->file : file).string(), 0, 0,
+                              (buffer ? "its " + buffer->define + " pass is " : std::string()) + message};
     std::cerr << too_slow.str() << '\n';
     model_.errors.push_back(too_slow);
     ++errors_;

@@ -18,7 +18,7 @@ build, and Q while the first program compiles quits; with --refine 0 and
 the interface hidden, the window's first draw of a new program does not
 compile it again (it drew straight into the window's format, which the
 builder's warm-up did not match), nor that of each pass of a first
-program, or of a channel a save binds anew, whose warm-up stands in
+program (glslViewer's buffers among them), or of a channel a save binds anew, whose warm-up stands in
 textures like those the pass will read (of the size of an image the graph
 holds);
 a light animated scene keeps
@@ -676,6 +676,36 @@ def no_compile_in_the_window_for_new_passes(work):
     quit_with_q(proc, window)
 
 
+def no_compile_in_the_window_for_glslviewer_buffers(work):
+    # glslViewer's buffers are passes that draw the one file with a define,
+    # read by samplers of the shader's own (u_buffer0): the warm-up binds
+    # those as the window does, or the window would compile each pass again.
+    seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
+    code = ("uniform sampler2D u_buffer0;\nuniform sampler2D u_doubleBuffer0;\nuniform vec2 u_resolution;\n"
+            "uniform float u_time;\n#define S a = fract(a * 1.37 + sin(a + SEED));\n#define S8 S S S S S S S S\n"
+            "#define S64 S8 S8 S8 S8 S8 S8 S8 S8\nvoid main() {\n  vec2 st = gl_FragCoord.xy / u_resolution;\n"
+            "  float a = st.x;\n  if (u_time < -1.0) { S64 S64 S64 S64 S64 S64 S64 S64 }\n"
+            "#if defined(BUFFER_0)\n  gl_FragColor = vec4(st, a, 1.0);\n"
+            "#elif defined(DOUBLE_BUFFER_0)\n  gl_FragColor = texture2D(u_doubleBuffer0, st) * 0.9 + vec4(a * 0.1);\n"
+            "#else\n  gl_FragColor = texture2D(u_buffer0, st) + texture2D(u_doubleBuffer0, st);\n#endif\n}\n")
+    scene, proc, err, _, window = start(work, "gv_buffers.frag", code.replace("SEED", seed),
+                                        "a glslViewer shader with two buffers, slow to compile, opens", "--no-ui",
+                                        timeout=60)
+    if not window:
+        return
+    log = open(err).read()
+    warm = re.search(r"reload ok generation 1 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms\)", log)
+    first = re.findall(r"first draw of (?:gv_buffers\.frag#(?:DOUBLE_)?BUFFER_0 in )?generation 1: a \d+x\d+ tile, "
+                       r"([\d.]+) ms", log)
+    check("... and logs its warm-up and its three passes' first draws", warm and len(first) == 3, log[-800:])
+    if warm and len(first) == 3:
+        print(f"     the builder's warm-up draws {float(warm.group(1)):.0f} ms; the window's first draws "
+              f"{', '.join(f'{float(ms):.0f}' for ms in first)} ms")
+        quit_with_q(proc, window)
+        return all(float(ms) < float(warm.group(1)) / 12 for ms in first), f"{warm.group(1)} {first}"
+    quit_with_q(proc, window)
+
+
 def no_compile_in_the_window_for_a_changed_channel(work, bound="keyboard", held=None):
     # A save that binds a channel anew (the keyboard where nothing was) was
     # warmed up with what the pass read before, and an image it had not read
@@ -898,6 +928,9 @@ if __name__ == "__main__":
         no_compile_in_the_window_twice(
             "the window's first draws of new passes do not compile them again (an eighth of the warm-up's time)",
             no_compile_in_the_window_for_new_passes, work)
+        no_compile_in_the_window_twice(
+            "... nor those of glslViewer's buffers, drawn from one file (a twelfth of the warm-up's time)",
+            no_compile_in_the_window_for_glslviewer_buffers, work)
         no_compile_in_the_window_twice(
             "the window's first draw of a pass with a channel bound anew does not compile it again",
             no_compile_in_the_window_for_a_changed_channel, work)
