@@ -25,7 +25,8 @@ a light animated scene keeps
 its first picture, and made larger it is scaled before its next; a project
 whose heavy pass is a buffer has its first picture at the smallest scale,
 its buffer drawn in tiles, and Q quits while it draws; a runaway buffer is reported too slow with its
-own file; an animated scene over budget is drawn at a lower scale, shown in the
+own file (a glslViewer buffer with the file it is drawn from, and its
+define); an animated scene over budget is drawn at a lower scale, shown in the
 title, and once paused it is drawn again at full size, which F12 and
 `render` agree on; a static scene with hard edges is refined at rest to
 --refine supersamples, which the screen, F12 and `render --samples` agree
@@ -252,6 +253,25 @@ def too_slow_buffer(work):
           open(err).read()[-800:])
     status, _, _ = quit_with_q(proc, window)
     check("and Q quits", status == 0, f"status {status}")
+
+
+def too_slow_glslviewer_buffer(work):
+    # glslViewer's buffer is a pass of the file it is written in: reported there, with its define.
+    steps = HEAVY.split("\n")[1] + "\n"  # the STEP macro
+    scene, proc, err, _, window = start(
+        work, "runaway_gv.frag",
+        "uniform sampler2D u_buffer0;\nuniform vec2 u_resolution;\n" + steps + "void main() {\n#ifdef BUFFER_0\n"
+        "  float a = 0.0; vec2 f = gl_FragCoord.xy;\n"
+        "  for (int i = 0; i < 60000; ++i) { STEP STEP STEP STEP STEP STEP STEP STEP }\n"
+        "  gl_FragColor = vec4(a);\n#else\n  gl_FragColor = texture2D(u_buffer0, gl_FragCoord.xy / u_resolution);\n"
+        "#endif\n}\n",
+        "a glslViewer shader with a runaway buffer opens", "--tile-limit", "0.005", marker="reload ok generation 1")
+    if not window:
+        return
+    line = wait_for(lambda: re.search(re.escape(scene) + r": error: its BUFFER_0 pass is too slow: a \d+x\d+ tile "
+                                      r"took [0-9.]+ s \(--tile-limit 0\.005 s\)", open(err).read()), timeout=10)
+    check("... and a glslViewer buffer's, at its file, with its define", bool(line), open(err).read()[-800:])
+    quit_with_q(proc, window)
 
 
 def heavy_animated_replanned(work):
@@ -916,6 +936,7 @@ if __name__ == "__main__":
         save_during_a_long_tile(work)
         too_slow_session(work)
         too_slow_buffer(work)
+        too_slow_glslviewer_buffer(work)
         keeps_drawing_while_building(work)
         number_edit_during_the_exact_build(work)
         code_edit_during_the_exact_build(work)
