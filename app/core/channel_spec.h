@@ -44,7 +44,7 @@ struct ChannelSpec {
   Sampler sampler;
   int cube_size = 0;  // a Cube A pass's face size when the pragma gives one; 0: the default
   // A sampler of the shader's own that the channel binds too, besides
-  // iChannelN and u_texN: glslViewer's u_buffer0 (core/glslviewer_buffers.h).
+  // iChannelN and u_texN: glslViewer's u_buffer0 (core/glslviewer_passes.h).
   std::string sampler_name;
   bool operator==(const ChannelSpec&) const = default;
 };

@@ -9,7 +9,7 @@
 #include "core/check.h"
 #include "core/dialect_names.h"
 #include "core/files.h"
-#include "core/glslviewer_buffers.h"
+#include "core/glslviewer_passes.h"
 #include "core/host_inputs.h"
 #include "core/lexing.h"
 
@@ -181,6 +181,18 @@ int count_word(std::string_view text, std::string_view word) {
   return count;
 }
 
+// Whether a directive of `code` (#if, #ifdef, #elif, ...) names `macro`.
+bool tests_macro(std::string_view code, std::string_view macro) {
+  bool found = false;
+  for_each_line(code, [&](std::string_view line, int) {
+    const size_t at = lexing::skip_blanks(line, 0);
+    found = at < line.size() && line[at] == '#' && line.find("if", at) != std::string_view::npos &&
+            lexing::has_word(line, macro);
+    return !found;
+  });
+  return found;
+}
+
 struct IncludeDirective {
   bool angled = false;
   std::string target;
@@ -282,6 +294,7 @@ class Preprocessor {
     if (std::optional<GlslViewerPass> pass = glslviewer_pass_of(first)) {
       first = pass->file;
       pass_define_ = pass->define;
+      glslviewer_pass_ = true;
     }
     out_.watch.push_back(first);
     include_file(first, /*from*/ -1, 0, 0);
@@ -573,6 +586,11 @@ class Preprocessor {
       return;
     }
 
+    // glslViewer draws a shader with a POSTPROCESSING branch so on screen,
+    // over its scene pass (core/glslviewer_passes.h).
+    postprocessed_ = out_.kind != ShaderKind::Shadertoy && tests_macro(body_code, kPostprocessing);
+    if (postprocessed_ && !glslviewer_pass_) pass_define_ = kPostprocessing;
+
     out_.text.reserve(body_.size() + 4096);
     out_.line_map.reserve(body_map_.size() + 128);
     const bool keep_version = modern;
@@ -610,7 +628,7 @@ class Preprocessor {
     out_.text += body_;
     out_.line_map.insert(out_.line_map.end(), body_map_.begin(), body_map_.end());
     if (out_.kind == ShaderKind::Shadertoy) emit_host(out_.cubemap ? kCubemapMain : kShadertoyMain);
-    else bind_glslviewer_buffers(body_code);
+    else bind_glslviewer_passes(body_code);
   }
 
   // The lines the compiler's text starts with, before the body: what decides
@@ -622,11 +640,12 @@ class Preprocessor {
     return text;
   }
 
-  // glslViewer's buffers (core/glslviewer_buffers.h): each buffer sampler
+  // glslViewer's passes (core/glslviewer_passes.h): each of their samplers
   // that this pass's code reads, in the #if branches its defines take, is
   // bound on a channel the code leaves free (from 3 down) to the pass that
-  // draws the file with that buffer's define.
-  void bind_glslviewer_buffers(std::string_view body_code) {
+  // draws the file with that sampler's define (u_scene: with none, and only
+  // in a file with a POSTPROCESSING branch, as glslViewer binds it).
+  void bind_glslviewer_passes(std::string_view body_code) {
     struct Declared {
       std::string name;
       Origin at;       // its declaration's line
@@ -634,7 +653,8 @@ class Preprocessor {
     };
     std::vector<Declared> declared;
     for_each_line(body_code, [&](std::string_view line, int number) {
-      if (const auto name = declared_sampler(line); name && !glslviewer_buffer_define(*name).empty())
+      const auto name = declared_sampler(line);
+      if (name && !glslviewer_pass_read_by(*name).empty() && (*name != "u_scene" || postprocessed_))
         declared.push_back({std::string(*name), body_map_[static_cast<size_t>(number - 1)],
                             static_cast<int>(lexing::find_word(line, *name).value_or(0)) + 1});
       return true;
@@ -656,14 +676,14 @@ class Preprocessor {
       const int channel = free_channel();
       if (channel < 0) {
         error(d.at.file, d.at.line, d.column,
-              "'" + d.name + "' is read, and glslViewer's " + glslviewer_buffer_define(d.name) +
+              "'" + d.name + "' is read, and glslViewer's " + glslviewer_pass_read_by(d.name) +
                   " pass it reads needs a channel of its own, but the code takes all four (iChannel0-3, u_tex0-3 "
                   "and #pragma channelN)");
         continue;
       }
       out_.channels[static_cast<size_t>(channel)] =
           ChannelSpec{ChannelSpec::Kind::Pass, ChannelSpec::Shape::Flat,
-                      glslviewer_pass(file, glslviewer_buffer_define(d.name)),
+                      glslviewer_pass(file, glslviewer_pass_read_by(d.name)),
                       Sampler{Sampler::Filter::Linear, Sampler::Wrap::Clamp, false}, 0, d.name};
     }
   }
@@ -681,7 +701,9 @@ class Preprocessor {
   Origin version_origin_;
   int host_lines_ = 0;
   bool in_dropped_define_ = false;  // the last line was a dropped #define ending in a backslash
-  std::string pass_define_;  // a glslViewer buffer pass's (BUFFER_0), or empty
+  std::string pass_define_;       // a glslViewer pass's (BUFFER_0, POSTPROCESSING), or empty
+  bool glslviewer_pass_ = false;  // the scene is a path glslviewer_pass() made
+  bool postprocessed_ = false;    // it has a POSTPROCESSING branch: u_scene reads its scene pass
 };
 
 }  // namespace
@@ -742,12 +764,14 @@ struct StraySampler {
 };
 
 // What a read of a sampler no channel binds gets, and why: glslViewer's
-// scene samplers name a pass this host does not draw.
+// scene samplers read a pass that only a POSTPROCESSING branch has, and a
+// depth that no model drawn here has.
 std::string stray_sampler_message(const std::string& name) {
-  if (name == "u_scene" || name == "u_sceneDepth")
-    return "'" + name + "' is read, but this host does not draw glslViewer's POSTPROCESSING pass, so it reads "
-           "black (a buffer here is a pass of its own: u_buffer0 with #ifdef BUFFER_0, or a file that #pragma "
-           "channelN \"FILE\" binds to iChannelN, or u_texN)";
+  if (name == "u_scene")
+    return "'u_scene' is read, but it is glslViewer's scene pass, which only a POSTPROCESSING pass reads "
+           "(#ifdef POSTPROCESSING), so it reads black";
+  if (name == "u_sceneDepth")
+    return "'u_sceneDepth' is read, but the host draws no model, so there is no depth and it reads black";
   return "'" + name + "' is read, but the host binds nothing to it, so it reads black (it binds iChannel0-3 "
          "and u_tex0-3, to what #pragma channelN \"FILE\" names)";
 }

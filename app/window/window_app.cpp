@@ -28,7 +28,7 @@
 #include "core/gl_census.h"
 #include "core/gl_debug.h"
 #include "core/glslang_client.h"
-#include "core/glslviewer_buffers.h"
+#include "core/glslviewer_passes.h"
 #include "core/views.h"
 #include "core/stop_signals.h"
 #include "core/wake_on_readable.h"
@@ -981,7 +981,7 @@ class WindowApp {
                   "too slow: a %dx%d tile took %.2f s (--tile-limit %g s); not drawn again until the next save",
                   tile.z, tile.w, ms / 1000.0, options_.tile_limit_s);
     const Diagnostic too_slow{Severity::Error, (buffer ? buffer->file : file).string(), 0, 0,
-                              (buffer ? "its " + buffer->define + " pass is " : std::string()) + message};
+                              (buffer ? "its " + buffer->name + " pass is " : std::string()) + message};
     std::cerr << too_slow.str() << '\n';
     model_.errors.push_back(too_slow);
     ++errors_;

@@ -133,7 +133,8 @@ TEST_F(Cli, OnlyAReadTheCompilerSeesWarnsOfAnUnboundChannel) {
 }
 
 // A sampler the code declares and reads that no channel binds (glslViewer's
-// postprocessing pass, which this host does not draw, or a name of its own)
+// scene pass, in a shader with no POSTPROCESSING pass to read it, or a name
+// of its own)
 // is one warning at its declaration, and reads black, not iChannel0's
 // texture, which every sampler read by default. A sampler declared and not
 // read says nothing.
@@ -154,9 +155,8 @@ TEST_F(Cli, ASamplerNoChannelBindsIsAWarningAndReadsBlack) {
   const test::Outcome r = run("check " + scene);
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.err,
-            scene + ":4:25: warning: 'u_scene' is read, but this host does not draw glslViewer's POSTPROCESSING "
-                    "pass, so it reads black (a buffer here is a pass of its own: u_buffer0 with #ifdef BUFFER_0, "
-                    "or a file that #pragma channelN \"FILE\" binds to iChannelN, or u_texN)\n" +
+            scene + ":4:25: warning: 'u_scene' is read, but it is glslViewer's scene pass, which only a "
+                    "POSTPROCESSING pass reads (#ifdef POSTPROCESSING), so it reads black\n" +
                 scene +
                 ":5:19: warning: 'myTex' is read, but the host binds nothing to it, so it reads black (it binds "
                 "iChannel0-3 and u_tex0-3, to what #pragma channelN \"FILE\" names)\n" +
@@ -223,6 +223,29 @@ TEST_F(Cli, GlslViewerBuffersAreDrawnAsPassesOfTheirOwn) {
   EXPECT_EQ(r.err, scene + ":3:19: warning: u_tex0 is read but nothing is bound to it, so it reads transparent "
                            "black (#pragma channel0 \"FILE\" names an input)\n" +
                        scene + ":6:17: error: 'return' : cannot convert return value to function return type\n");
+}
+
+// A glslViewer shader with a POSTPROCESSING branch is drawn so on screen,
+// and its u_scene reads the scene pass (the file with no define) of this
+// frame, which may read a buffer of its own.
+TEST_F(Cli, AGlslViewerPostprocessingPassDrawsOverItsScene) {
+  write_file(dir_ / "post.frag",
+             "uniform sampler2D u_scene;\nuniform sampler2D u_buffer0;\nuniform vec2 u_resolution;\n"
+             "void main() {\n  vec2 st = gl_FragCoord.xy / u_resolution;\n#ifdef BUFFER_0\n"
+             "  gl_FragColor = vec4(0.5);\n#elif defined(POSTPROCESSING)\n"
+             "  gl_FragColor = vec4(1.0 - texture2D(u_scene, st).rgb, 1.0);\n#else\n"
+             "  gl_FragColor = vec4(0.25, texture2D(u_buffer0, st).r, 0.0, 1.0);\n#endif\n}\n");
+  const std::string scene = (dir_ / "post.frag").string();
+  const test::Outcome r = run("render " + scene + " -o " + (dir_ / "p.exr").string() + " --size 4x4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::vector<float> px = test::read_pixels(dir_ / "p.exr");
+  ASSERT_EQ(px.size(), 64u);
+  for (size_t i = 0; i < px.size(); i += 4) {
+    EXPECT_FLOAT_EQ(px[i], 0.75f);
+    EXPECT_FLOAT_EQ(px[i + 1], 0.5f);
+    EXPECT_FLOAT_EQ(px[i + 2], 1.0f);
+  }
 }
 
 // A buffer's pass takes a channel the code leaves free; with all four read

@@ -10,7 +10,7 @@
 #include <algorithm>
 
 #include "core/files.h"
-#include "core/glslviewer_buffers.h"
+#include "core/glslviewer_passes.h"
 #include "support.h"
 
 namespace rm {
@@ -242,20 +242,26 @@ TEST(Source, LegacyGlslViewerShaderIsWrappedForCore) {
   EXPECT_EQ(origin_of(s, "void main()").second, 5);
 }
 
-// glslViewer's buffer passes are paths of their own: the file's, with the define.
-TEST(GlslViewerBuffers, APassPathNamesItsFileAndDefine) {
+// glslViewer's passes are paths of their own: the file's, with the pass's name.
+TEST(GlslViewerPasses, APassPathNamesItsFileAndDefine) {
   EXPECT_EQ(glslviewer_pass("/a/s.frag", "BUFFER_0"), fs::path("/a/s.frag#BUFFER_0"));
   const std::optional<GlslViewerPass> pass = glslviewer_pass_of("/a/s.frag#DOUBLE_BUFFER_12");
   ASSERT_TRUE(pass);
   EXPECT_EQ(pass->file, fs::path("/a/s.frag"));
+  EXPECT_EQ(pass->name, "DOUBLE_BUFFER_12");
   EXPECT_EQ(pass->define, "DOUBLE_BUFFER_12");
+  const std::optional<GlslViewerPass> scene = glslviewer_pass_of("/a/s.frag#SCENE");
+  ASSERT_TRUE(scene);
+  EXPECT_EQ(scene->name, "SCENE");
+  EXPECT_EQ(scene->define, "");  // the scene pass is the file as it is
   for (const char* other :
        {"/a/s.frag", "/a/s.frag#FOO_0", "/a/s#BUFFER_0/t.frag", "/a/s.frag#BUFFER_", "/a/#BUFFER_0"})
     EXPECT_FALSE(glslviewer_pass_of(other)) << other;
-  EXPECT_EQ(glslviewer_buffer_define("u_buffer0"), "BUFFER_0");
-  EXPECT_EQ(glslviewer_buffer_define("u_doubleBuffer15"), "DOUBLE_BUFFER_15");
-  for (const char* other : {"u_buffer", "u_buffer0Resolution", "u_tex0", "u_scene", "buffer0"})
-    EXPECT_EQ(glslviewer_buffer_define(other), "") << other;
+  EXPECT_EQ(glslviewer_pass_read_by("u_buffer0"), "BUFFER_0");
+  EXPECT_EQ(glslviewer_pass_read_by("u_doubleBuffer15"), "DOUBLE_BUFFER_15");
+  EXPECT_EQ(glslviewer_pass_read_by("u_scene"), "SCENE");
+  for (const char* other : {"u_buffer", "u_buffer0Resolution", "u_tex0", "u_sceneDepth", "buffer0"})
+    EXPECT_EQ(glslviewer_pass_read_by(other), "") << other;
 }
 
 // Each buffer sampler a pass reads, in the #if branches its defines take,
@@ -289,6 +295,28 @@ TEST(Source, GlslViewerBufferReadsBindAFreeChannelToTheirPass) {
   EXPECT_EQ(buffer.channels[0].kind, ChannelSpec::Kind::None);
   EXPECT_EQ(origin_of(buffer, "gl_FragColor = texture2D(u_doubleBuffer1"), std::make_pair(file.string(), 8));
   EXPECT_EQ(join(validate(buffer)), "");
+}
+
+// A shader with a POSTPROCESSING branch is drawn so, and its u_scene reads
+// the scene pass: the file with no define, which defines no POSTPROCESSING.
+TEST(Source, AGlslViewerPostprocessingBranchReadsTheScenePass) {
+  TempDir dir;
+  write_file(dir / "post.frag",
+             "uniform sampler2D u_scene;\nuniform vec2 u_resolution;\nvoid main() {\n"
+             "  #if defined( POSTPROCESSING )\n  gl_FragColor = 1.0 - texture2D(u_scene, vec2(0.5));\n"
+             "  #else\n  gl_FragColor = vec4(0.25);\n  #endif\n}\n");
+  const fs::path file = fs::absolute(dir / "post.frag").lexically_normal();
+  const Source image = preprocess(file, {});
+  ASSERT_TRUE(image.ok()) << join(image.errors);
+  EXPECT_NE(image.text.find("#define POSTPROCESSING\n"), std::string::npos);
+  EXPECT_EQ(image.channels[3].path, glslviewer_pass(file, "SCENE"));
+  EXPECT_EQ(image.channels[3].sampler_name, "u_scene");
+  const Source scene = preprocess(glslviewer_pass(file, "SCENE"), {});
+  ASSERT_TRUE(scene.ok()) << join(scene.errors);
+  EXPECT_EQ(scene.text.find("#define POSTPROCESSING"), std::string::npos);
+  EXPECT_EQ(scene.channels[3].kind, ChannelSpec::Kind::None);
+  EXPECT_EQ(join(validate(image)), "");
+  EXPECT_EQ(join(validate(scene)), "");
 }
 
 // GLSL 1.10's sampling functions, each form of each, on a 4.50 core profile.
