@@ -248,6 +248,23 @@ TEST_F(Cli, AGlslViewerPostprocessingPassDrawsOverItsScene) {
   }
 }
 
+// docs/shadertoy.md's glslViewer shader renders with no warning: the
+// vignette of its POSTPROCESSING pass darkens the scene's background in the
+// corner, and the dot that BUFFER_0 draws shows through the other passes.
+TEST_F(Cli, TheDocsGlslViewerShaderRendersItsFourPasses) {
+  const test::Outcome r = run("render " + std::string(RM_TEST_DATA_DIR) + "/glslviewer/trails.frag -o " +
+                              (dir_ / "t.exr").string() + " --size 32x18 --time 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::vector<float> px = test::read_pixels(dir_ / "t.exr");
+  ASSERT_EQ(px.size(), 32u * 18u * 4u);
+  const float st = 0.5f / 32.0f - 0.5f, tt = 17.5f / 18.0f - 0.5f;  // the top left pixel
+  EXPECT_NEAR(px[0], 0.05f * (1.0f - 0.8f * (st * st + tt * tt)), 1e-4f);
+  float brightest = 0.0f;
+  for (size_t i = 0; i < px.size(); i += 4) brightest = std::max(brightest, px[i]);
+  EXPECT_GT(brightest, 0.7f);
+}
+
 // A buffer's pass takes a channel the code leaves free; with all four read
 // (u_tex0-3), there is none, and that is an error at the buffer's declaration.
 TEST_F(Cli, AGlslViewerBufferWithNoChannelFreeIsAnError) {
