@@ -11,6 +11,7 @@
 # protocol.
 set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/source.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/glslviewer_passes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lexing.cpp
   ${CMAKE_CURRENT_LIST_DIR}/dialect_names.cpp
