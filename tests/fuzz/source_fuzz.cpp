@@ -11,7 +11,8 @@
 // The first chunk is /fuzz/scene.frag; each "@@ NAME" line starts the file
 // /fuzz/NAME. <rm/...> resolves in /fuzz (the shaderlib root), -I is /fuzz/inc.
 // Checked: no crash or hang, and every line of the output maps back to a file
-// the preprocessor read (or to the host). The output's numbers are then lifted
+// the preprocessor read (or to the host), in the scene and in each glslViewer
+// pass it reads (the same file with BUFFER_N, or POSTPROCESSING's scene). The output's numbers are then lifted
 // for a twin (core/tweak), which must keep every line where it was and hold
 // as many marks as values, never more than the limit. The shader's own
 // uniforms are read from it (core/user_uniforms), and each default, written
@@ -23,6 +24,7 @@
 #include <map>
 #include <string>
 
+#include "core/glslviewer_passes.h"
 #include "core/source.h"
 #include "core/tweak.h"
 #include "core/user_uniforms.h"
@@ -54,6 +56,15 @@ std::map<std::string, std::string> split_files(const std::string& input) {
   return files;
 }
 
+// The line map covers every line, and each origin names a file that was read.
+void check_line_map(const rm::Source& source) {
+  size_t lines = 0;
+  for (char c : source.text) lines += c == '\n';
+  if (lines != source.line_map.size()) std::abort();
+  for (const rm::Origin& o : source.line_map)
+    if (o.file >= static_cast<int>(source.files.size())) std::abort();
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -82,12 +93,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.defines = {{"FUZZ", "1"}};
   const rm::Source source = rm::preprocess("/fuzz/scene.frag", options, memory);
   if (source.ok()) {
-    // The line map covers every line, and each origin names a file that was read.
-    size_t lines = 0;
-    for (char c : source.text) lines += c == '\n';
-    if (lines != source.line_map.size()) std::abort();
-    for (const rm::Origin& o : source.line_map)
-      if (o.file >= static_cast<int>(source.files.size())) std::abort();
+    check_line_map(source);
+    size_t lines = source.line_map.size();
+    for (const rm::ChannelSpec& channel : source.channels)
+      if (channel.kind == rm::ChannelSpec::Kind::Pass && rm::glslviewer_pass_of(channel.path))
+        if (const rm::Source pass = rm::preprocess(channel.path, options, memory); pass.ok()) check_line_map(pass);
     for (const rm::LiftScope scope : {rm::LiftScope::FunctionBodies, rm::LiftScope::WithConstants}) {
       const rm::LiftedLiterals lifted = rm::lift_literals(source, options.shaderlib_dir, scope);
       if (!lifted.ok) continue;
