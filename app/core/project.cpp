@@ -6,6 +6,7 @@
 
 #include "core/channel_spec.h"
 #include "core/files.h"
+#include "core/glslviewer_passes.h"
 #include "core/shadertoy_json.h"
 
 namespace rm {
@@ -25,13 +26,24 @@ SourceOptions with_forced(SourceOptions options, const std::vector<std::string>&
   return options;
 }
 
+// A pass's name as the draw order sorts it: its file's, where a glslViewer
+// pass's number has two digits (BUFFER_2 before BUFFER_10, as glslViewer draws them).
+std::string sorted_name(const fs::path& pass) {
+  std::string name = pass.filename().string();
+  const size_t digits = name.find_last_not_of("0123456789") + 1;
+  if (glslviewer_pass_of(pass) && name.size() - digits == 1) name.insert(digits, "0");
+  return name;
+}
+
 // The passes a walk reached (the image first) in the order they are drawn:
 // the stand-ins for missing media first, then buffers in the order of their
 // file names, then cube passes, then the image: Shadertoy's A, B, C, D,
 // Cube A, Image.
 std::vector<fs::path> draw_order(const std::vector<fs::path>& reached, const std::map<fs::path, int>& cube_size) {
   std::vector<fs::path> passes(reached.begin() + 1, reached.end());
-  auto order = [&](const fs::path& p) { return std::make_tuple(!is_media_stand_in(p), cube_size.count(p), p.filename(), p); };
+  auto order = [&](const fs::path& p) {
+    return std::make_tuple(!is_media_stand_in(p), cube_size.count(p), sorted_name(p), p);
+  };
   std::sort(passes.begin(), passes.end(), [&](const fs::path& a, const fs::path& b) { return order(a) < order(b); });
   passes.push_back(reached.front());
   return passes;

@@ -225,6 +225,17 @@ TEST_F(Cli, GlslViewerBuffersAreDrawnAsPassesOfTheirOwn) {
                        scene + ":6:17: error: 'return' : cannot convert return value to function return type\n");
 }
 
+// glslViewer draws its buffers in the order of their numbers: BUFFER_10
+// reads BUFFER_2 of this frame (it would read 0 of the frame before).
+TEST_F(Cli, GlslViewerBuffersDrawInTheOrderOfTheirNumbers) {
+  write_file(dir_ / "order.frag",
+             "uniform sampler2D u_buffer2;\nuniform sampler2D u_buffer10;\nvoid main() {\n#if defined(BUFFER_2)\n"
+             "  gl_FragColor = vec4(0.5);\n#elif defined(BUFFER_10)\n"
+             "  gl_FragColor = texture2D(u_buffer2, vec2(0.5)) + 0.25;\n#else\n"
+             "  gl_FragColor = texture2D(u_buffer10, vec2(0.5));\n#endif\n}\n");
+  EXPECT_FLOAT_EQ(red_of((dir_ / "order.frag").string(), ""), 0.75f);
+}
+
 // A glslViewer shader with a POSTPROCESSING branch is drawn so on screen,
 // and its u_scene reads the scene pass (the file with no define) of this
 // frame, which may read a buffer of its own.
