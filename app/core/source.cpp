@@ -157,19 +157,43 @@ void for_each_line(std::string_view text, Line line) {
   }
 }
 
-// The name `line` declares a sampler by (`uniform [precision] samplerXX
-// NAME`: the code's own sampler, and glslViewer's u_texN and u_buffer0), or
-// nullopt. `line` has no comments.
-std::optional<std::string_view> declared_sampler(std::string_view line) {
-  std::vector<std::string_view> words;
+// The names `line` declares samplers by (`uniform [precision] samplerXX
+// NAME[, NAME...]`: the code's own samplers, and glslViewer's u_texN and
+// u_buffer0), each with its 0-based column; none for any other line. `line`
+// has no comments.
+struct DeclaredName {
+  std::string_view name;
+  size_t column = 0;
+};
+std::vector<DeclaredName> declared_samplers(std::string_view line) {
+  std::vector<DeclaredName> words;
   lexing::any_word(line, [&](size_t begin, size_t end) {
-    words.push_back(line.substr(begin, end - begin));
-    return words.size() >= 4;
+    words.push_back({line.substr(begin, end - begin), begin});
+    return words.size() >= 3;
   });
-  if (words.size() < 3 || words[0] != "uniform") return std::nullopt;
-  const size_t type = lexing::is_precision(words[1]) ? 2 : 1;
-  if (type + 1 >= words.size() || words[type].find("sampler") > 1) return std::nullopt;  // sampler2D, isampler3D
-  return words[type + 1];
+  if (words.size() < 3 || words[0].name != "uniform") return {};
+  const size_t type = lexing::is_precision(words[1].name) ? 2 : 1;
+  if (type + 1 >= words.size() || words[type].name.find("sampler") > 1) return {};  // sampler2D, isampler3D
+  // The declarators: names at the top level, separated by commas, up to ';'
+  // (an array's size in brackets is skipped).
+  std::vector<DeclaredName> names;
+  const size_t after_type = words[type].column + words[type].name.size();
+  bool want_name = true;
+  int brackets = 0;
+  for (size_t at = after_type; at < line.size() && line[at] != ';'; ++at) {
+    const char c = line[at];
+    if (c == '[') ++brackets;
+    else if (c == ']') brackets -= brackets > 0;
+    else if (brackets == 0 && c == ',') want_name = true;
+    else if (brackets == 0 && want_name && lexing::is_word_start(c)) {
+      size_t end = at;
+      while (end < line.size() && lexing::is_word_char(line[end])) ++end;
+      names.push_back({line.substr(at, end - at), at});
+      want_name = false;
+      at = end - 1;
+    }
+  }
+  return names;
 }
 
 int count_word(std::string_view text, std::string_view word) {
@@ -653,10 +677,10 @@ class Preprocessor {
     };
     std::vector<Declared> declared;
     for_each_line(body_code, [&](std::string_view line, int number) {
-      const auto name = declared_sampler(line);
-      if (name && !glslviewer_pass_read_by(*name).empty() && (*name != "u_scene" || postprocessed_))
-        declared.push_back({std::string(*name), body_map_[static_cast<size_t>(number - 1)],
-                            static_cast<int>(lexing::find_word(line, *name).value_or(0)) + 1});
+      for (const DeclaredName& d : declared_samplers(line))
+        if (!glslviewer_pass_read_by(d.name).empty() && (d.name != "u_scene" || postprocessed_))
+          declared.push_back({std::string(d.name), body_map_[static_cast<size_t>(number - 1)],
+                              static_cast<int>(d.column) + 1});
       return true;
     });
     if (declared.empty()) return;
@@ -833,14 +857,14 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
   };
   for_each_line(code, [&](std::string_view line, int number) {
     if (!own_line(number)) return true;
-    const std::optional<std::string_view> declared = declared_sampler(line);
-    if (!declared) return true;
-    const std::string name(*declared);
-    if (stray_index.count(name) || bound_by_name(name)) return true;
-    const int channel = channel_of_sampler(name);
-    if (channel >= 0 && (name[0] == 'i' || bound[static_cast<size_t>(channel)])) return true;
-    stray_index[name] = strays.size();
-    strays.push_back({name, number, channel});
+    for (const DeclaredName& declared : declared_samplers(line)) {
+      const std::string name(declared.name);
+      if (stray_index.count(name) || bound_by_name(name)) continue;
+      const int channel = channel_of_sampler(name);
+      if (channel >= 0 && (name[0] == 'i' || bound[static_cast<size_t>(channel)])) continue;
+      stray_index[name] = strays.size();
+      strays.push_back({name, number, channel});
+    }
     return true;
   });
   if (strays.empty()) return out;

@@ -297,6 +297,29 @@ TEST(Source, GlslViewerBufferReadsBindAFreeChannelToTheirPass) {
   EXPECT_EQ(join(validate(buffer)), "");
 }
 
+// One declaration may name several samplers: each is bound as if it had a
+// line of its own, and one no channel binds is warned of at its own column.
+TEST(Source, EachSamplerOfOneDeclarationIsBound) {
+  TempDir dir;
+  write_file(dir / "gv.frag",
+             "uniform sampler2D u_buffer0, u_buffer1 , stray[2];\n"
+             "void main() {\n  gl_FragColor = texture2D(u_buffer0, vec2(0.5)) + texture2D(u_buffer1, vec2(0.5))"
+             " + texture2D(stray[1], vec2(0.5));\n}\n");
+  const fs::path file = fs::absolute(dir / "gv.frag").lexically_normal();
+  const Source image = preprocess(file, {});
+  ASSERT_TRUE(image.ok()) << join(image.errors);
+  EXPECT_EQ(image.channels[3].path, glslviewer_pass(file, "BUFFER_0"));
+  EXPECT_EQ(image.channels[3].sampler_name, "u_buffer0");
+  EXPECT_EQ(image.channels[2].path, glslviewer_pass(file, "BUFFER_1"));
+  EXPECT_EQ(image.channels[2].sampler_name, "u_buffer1");
+  EXPECT_EQ(image.channels[1].kind, ChannelSpec::Kind::None);
+  std::array<bool, 4> bound{};
+  for (size_t c = 0; c < 4; ++c) bound[c] = image.channels[c].kind != ChannelSpec::Kind::None;
+  const std::string warnings = join(unbound_channel_reads(image, bound));
+  EXPECT_NE(warnings.find(file.string() + ":1:42: warning: 'stray'"), std::string::npos) << warnings;
+  EXPECT_EQ(warnings.find("u_buffer"), std::string::npos) << warnings;
+}
+
 // A shader with a POSTPROCESSING branch is drawn so, and its u_scene reads
 // the scene pass: the file with no define, which defines no POSTPROCESSING.
 TEST(Source, AGlslViewerPostprocessingBranchReadsTheScenePass) {
