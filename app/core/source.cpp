@@ -171,9 +171,9 @@ std::vector<DeclaredName> declared_samplers(std::string_view line) {
     words.push_back({line.substr(begin, end - begin), begin});
     return words.size() >= 3;
   });
-  if (words.size() < 3 || words[0].name != "uniform") return {};
+  if (words.size() < 2 || words[0].name != "uniform") return {};
   const size_t type = lexing::is_precision(words[1].name) ? 2 : 1;
-  if (type + 1 >= words.size() || words[type].name.find("sampler") > 1) return {};  // sampler2D, isampler3D
+  if (type >= words.size() || words[type].name.find("sampler") > 1) return {};  // sampler2D, isampler3D
   // The declarators: names at the top level, separated by commas, up to ';'
   // (an array's size in brackets is skipped).
   std::vector<DeclaredName> names;

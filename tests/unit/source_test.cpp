@@ -302,9 +302,9 @@ TEST(Source, GlslViewerBufferReadsBindAFreeChannelToTheirPass) {
 TEST(Source, EachSamplerOfOneDeclarationIsBound) {
   TempDir dir;
   write_file(dir / "gv.frag",
-             "uniform sampler2D u_buffer0, u_buffer1 , stray[2];\n"
+             "uniform sampler2D u_buffer0, u_buffer1 , stray[2];\nuniform highp sampler2D u_buffer2;\n"
              "void main() {\n  gl_FragColor = texture2D(u_buffer0, vec2(0.5)) + texture2D(u_buffer1, vec2(0.5))"
-             " + texture2D(stray[1], vec2(0.5));\n}\n");
+             " + texture2D(stray[1], vec2(0.5)) + texture2D(u_buffer2, vec2(0.5));\n}\n");
   const fs::path file = fs::absolute(dir / "gv.frag").lexically_normal();
   const Source image = preprocess(file, {});
   ASSERT_TRUE(image.ok()) << join(image.errors);
@@ -312,7 +312,8 @@ TEST(Source, EachSamplerOfOneDeclarationIsBound) {
   EXPECT_EQ(image.channels[3].sampler_name, "u_buffer0");
   EXPECT_EQ(image.channels[2].path, glslviewer_pass(file, "BUFFER_1"));
   EXPECT_EQ(image.channels[2].sampler_name, "u_buffer1");
-  EXPECT_EQ(image.channels[1].kind, ChannelSpec::Kind::None);
+  EXPECT_EQ(image.channels[1].path, glslviewer_pass(file, "BUFFER_2"));  // after a precision
+  EXPECT_EQ(image.channels[0].kind, ChannelSpec::Kind::None);
   std::array<bool, 4> bound{};
   for (size_t c = 0; c < 4; ++c) bound[c] = image.channels[c].kind != ChannelSpec::Kind::None;
   const std::string warnings = join(unbound_channel_reads(image, bound));
