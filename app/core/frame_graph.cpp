@@ -378,6 +378,16 @@ void FrameGraph::restart() {
   keyboard_.clear();
 }
 
+bool FrameGraph::buffers_sized_for(const Project& project, glm::ivec2 size) const {
+  return std::all_of(project.passes().begin(), project.passes().end(), [&](const Pass& pass) {
+    if (pass.is_image || pass.cube) return true;  // a cube's faces have a size of their own
+    const auto it = buffers_.find(pass.file);
+    return it != buffers_.end() && it->second.size == size;
+  });
+}
+
+void FrameGraph::swap_buffers(BufferSet& set) { std::swap(buffers_, set.buffers_); }
+
 GLuint FrameGraph::buffer_texture(const fs::path& pass) const {
   auto it = buffers_.find(pass);
   return it == buffers_.end() ? 0 : it->second.front.get();

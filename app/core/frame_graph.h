@@ -118,6 +118,20 @@ class FrameGraph {
   // The latest output of a buffer pass (tests read it); 0 if none.
   GLuint buffer_texture(const fs::path& pass) const;
 
+  // Whether every buffer pass the size of the picture holds one of `size`,
+  // so that the image pass at `size` reads them as they are. The window's
+  // buffers are the size of its last picture, which the frame budget may
+  // have drawn at a lower scale.
+  bool buffers_sized_for(const Project& project, glm::ivec2 size) const;
+  // Buffer targets apart from the graph's own. A picture of another size
+  // than the one the buffers hold (a screenshot while the budget scales the
+  // window's, or at --shot-scale) draws every buffer pass anew into a set of
+  // its own, swapped in for its draws and out again, so that the window's
+  // buffers stay as they are. Only for a project whose buffers do not feed
+  // later frames: drawn anew, they are what they would have been.
+  class BufferSet;
+  void swap_buffers(BufferSet& set);
+
  private:
   // A buffer pass's pair of targets: RGBA32F pictures, or for a Cube A pass
   // RGBA16F cube maps (one framebuffer per face).
@@ -136,6 +150,13 @@ class FrameGraph {
   ChannelInputs inputs_of(const Project& project, size_t pass) const;
   GLuint sampler_for(const Sampler& s) const;
 
+ public:
+  class BufferSet {  // after Buffer, which it holds
+    friend class FrameGraph;
+    std::map<fs::path, Buffer> buffers_;
+  };
+
+ private:
   const Renderer& renderer_;
   ImageTextures images_;
   std::map<fs::path, Buffer> buffers_;

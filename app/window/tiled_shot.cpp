@@ -7,12 +7,13 @@
 namespace rm {
 
 TiledShot::TiledShot(const FrameInputs& inputs, glm::ivec2 size, int max_part, double tile_ms, double per_pixel_ms,
-                     std::filesystem::path path, Metadata metadata)
+                     std::filesystem::path path, Metadata metadata, bool own_buffers)
     : inputs_(inputs),
       tile_ms_(tile_ms),
       plan_(size, tile_ms, per_pixel_ms),
       path_(std::move(path)),
-      metadata_(std::move(metadata)) {
+      metadata_(std::move(metadata)),
+      buffers_(own_buffers ? std::make_unique<FrameGraph::BufferSet>() : nullptr) {
   inputs_.resolution = glm::vec3(size, 1.0f);
   for (int y = 0; y < size.y; y += max_part)
     for (int x = 0; x < size.x; x += max_part)
@@ -32,6 +33,19 @@ bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms,
   using Clock = std::chrono::steady_clock;
   const auto slice_start = Clock::now();
   auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+  // The shot's own buffers stand in for the graph's while it draws, and
+  // only then: the window draws between slices.
+  struct SwappedIn {
+    FrameGraph& graph;
+    FrameGraph::BufferSet* set;
+    ~SwappedIn() {
+      if (set) graph.swap_buffers(*set);
+    }
+  } swapped{graph, buffers_.get()};
+  if (buffers_) graph.swap_buffers(*buffers_);
+  while (buffers_ && buffer_tile(graph, project, finish)) {
+    if (ms_since(slice_start) >= slice_ms) return false;
+  }
   while (part_ < parts_.size()) {
     const glm::ivec4 part = parts_[part_];
     if (plan_.done()) {  // the part is whole: into the picture, and on to the next
@@ -63,10 +77,39 @@ bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms,
   return part_ == parts_.size();
 }
 
+bool TiledShot::buffer_tile(FrameGraph& graph, const Project& project, const std::function<void()>& finish) {
+  const glm::ivec2 size(inputs_.resolution);
+  while (next_buffer_ + 1 < project.passes().size()) {
+    if (!buffer_plan_) {
+      if (!graph.begin_pass(project, next_buffer_, size)) {  // static, and drawn for this shot
+        ++next_buffer_;
+        continue;
+      }
+      buffer_plan_.emplace(graph.pass_size(project, next_buffer_, size), tile_ms_);
+    }
+    const glm::ivec4 tile = buffer_plan_->next();
+    const auto start = std::chrono::steady_clock::now();
+    graph.draw_pass_region(project, next_buffer_, inputs_, tile);
+    if (finish) finish();
+    else glFinish();
+    buffer_plan_->drawn(tile, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    ++tiles_;
+    if (buffer_plan_->done()) {
+      graph.end_pass(project, next_buffer_);
+      buffer_plan_.reset();
+      ++next_buffer_;
+    }
+    return true;
+  }
+  return false;
+}
+
 void TiledShot::restart(Metadata metadata) {
   metadata_ = std::move(metadata);
   start_part(0);
   tiles_ = 0;
+  next_buffer_ = 0;  // a new program's buffers are drawn again (a static one of the same program is kept)
+  buffer_plan_.reset();
 }
 
 }  // namespace rm

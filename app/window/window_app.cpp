@@ -1075,7 +1075,13 @@ class WindowApp {
       std::cerr << "raymarching: error: no picture to take: the scene is too slow to draw (--tile-limit)\n";
       return;
     }
-    const int scale = std::max(1, options_.shot_scale);
+    int scale = std::max(1, options_.shot_scale);
+    if (scale > 1 && project_.has_feedback()) {
+      std::cerr << "raymarching: warning: --shot-scale " << scale
+                << " does not apply to a project whose buffers feed its next frame (they hold pictures of the "
+                   "window's size): the shot is at the window's size\n";
+      scale = 1;
+    }
     const glm::ivec2 size = glm::ivec2(glm::vec2(inputs_.resolution)) * scale;
     const std::string pixels = std::to_string(size.x) + "x" + std::to_string(size.y);
     if (std::max(size.x, size.y) > kMaxPictureSide) {
@@ -1086,6 +1092,16 @@ class WindowApp {
     if (std::max(size.x, size.y) > renderer_.max_tile() && !project_.image_source().movable_frag_coord) {
       std::cerr << "raymarching: error: --shot-scale " << scale << " exceeds " << renderer_.max_tile()
                 << " pixels, and a shader that redeclares gl_FragCoord cannot be drawn in tiles\n";
+      return;
+    }
+    // Buffers the size of the picture were drawn for the last one, which the
+    // budget may have scaled: a shot of another size draws them anew. (Not a
+    // feedback project's, which the budget never scales.)
+    const bool own_buffers = !project_.has_feedback() && !graph_.buffers_sized_for(project_, size);
+    if (own_buffers && std::max(size.x, size.y) > renderer_.max_tile()) {
+      std::cerr << "raymarching: error: no screenshot: " << pixels << " pixels (the window's at --shot-scale " << scale
+                << "): its buffer passes are drawn again for it, whole, at most " << renderer_.max_tile()
+                << " pixels a side; a smaller --shot-scale or window takes one\n";
       return;
     }
     FrameInputs in = inputs_;
@@ -1108,7 +1124,7 @@ class WindowApp {
       shots_wait_for_build_ = waiting_for_build();
       shots_.emplace_back(in, size, renderer_.max_tile(), slice_ms(),
                           measured_per_pixel_ms(glm::ivec2(inputs_.resolution)), options_.shot_dir / name,
-                          std::move(metadata));
+                          std::move(metadata), own_buffers);
     }
   }
 

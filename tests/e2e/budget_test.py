@@ -32,7 +32,10 @@ title, and once paused it is drawn again at full size, which F12 and
 --refine supersamples, which the screen, F12 and `render --samples` agree
 on (and one sample does not), and a save starts the refinement again; F12
 on a heavy shader is drawn in tiles, so Q still quits (and says the
-shot was not taken), and a shot drawn in tiles matches `render`.
+shot was not taken), and a shot drawn in tiles matches `render`; a shot of
+a project at another size than its buffers' (the budget's scale,
+--shot-scale) draws them anew and matches `render`, and a feedback
+project's is at the window's size, with a warning.
 """
 import os
 import re
@@ -291,7 +294,7 @@ def tiled_feedback(work):
     with open(os.path.join(work, "feedback_buffer.frag"), "w") as f:
         f.write(FEEDBACK_BUFFER)
     scene, proc, err, out, window = start(work, "feedback.frag", FEEDBACK_IMAGE, "a feedback project's window opens",
-                                          "--target-fps", "1000", "--shot-dir", work, "--no-ui")
+                                          "--target-fps", "1000", "--shot-scale", "2", "--shot-dir", work, "--no-ui")
     if not window:
         return
     tiled = wait_for(lambda: len(re.findall(r"picture 320x180 scale 1 in .*, its buffers in (\d+) tiles",
@@ -301,6 +304,11 @@ def tiled_feedback(work):
     time.sleep(0.5)
     shot = take_screenshot(window, out)
     check("paused, F12 writes a shot", bool(shot))
+    # Its buffer holds pictures of the window's size, and feeds the next frame.
+    check("... at the window's size, not --shot-scale's, which a warning says",
+          shot and "--size 320x180" in metadata(shot).get("ImageDescription", "") and
+          "warning: --shot-scale 2 does not apply to a project whose buffers feed its next frame" in open(err).read(),
+          open(err).read()[-500:])
     if shot:
         same, report = matches_render(BINARY, shot, scene, os.path.join(work, "feedback_reference.png"))
         check("a buffer drawn in tiles frame after frame is the one `render` draws whole", same, report)
@@ -847,6 +855,54 @@ def shots_in_tiles(work):
     proc.wait(timeout=10)
 
 
+# A project whose buffer is the size of the picture, read texel by texel: an
+# image pass drawn at another size than its buffer's reads the wrong texels.
+TEXEL_IMAGE = """#pragma channel0 "texel_buffer.frag" filter=nearest
+void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0); }
+"""
+
+
+def shots_of_a_project_at_another_size(work):
+    # F12 while the budget scales a project's pictures, buffers and all: the
+    # shot at the window's size draws the buffer anew at that size. It used
+    # to read the scaled buffer: its corner, and black elsewhere.
+    with open(os.path.join(work, "texel_buffer.frag"), "w") as f:
+        f.write(ANIMATED)
+    scene, proc, err, out, window = start(work, "scaled_project.frag", TEXEL_IMAGE, "a moving project's window opens",
+                                          "--target-fps", "1000", "--refine", "0", "--shot-dir", work, "--no-ui")
+    if not window:
+        return
+    scaled = wait_for(lambda: re.search(r"picture \d+x\d+ scale 0\.\d+", open(err).read()), timeout=10)
+    check("the budget draws its buffer and image at a lower scale", bool(scaled), open(err).read()[-500:])
+    shot = take_screenshot(window, out)
+    check("F12 while it moves writes a shot", bool(shot))
+    if shot:
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "scaled_project_reference.png"))
+        check("... which `render` of its command line draws: the buffer drawn anew at the shot's size", same, report)
+    marker = len(open(err).read())
+    check("... and the window goes on at its scale",
+          wait_for(lambda: re.search(r"picture \d+x\d+ scale 0\.\d+", open(err).read()[marker:])),
+          open(err).read()[marker:][-500:])
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+    # --shot-scale 2, the picture at rest: the shot's buffer is twice the window's.
+    scene, proc, err, out, window = start(work, "doubled_project.frag", TEXEL_IMAGE, "a project's window opens",
+                                          "--shot-scale", "2", "--shot-dir", work, "--no-ui")
+    if not window:
+        return
+    xdotool("key", "--window", window, "space")
+    time.sleep(0.5)
+    shot = take_screenshot(window, out)
+    described = metadata(shot).get("ImageDescription", "") if shot else ""
+    check("F12 at --shot-scale 2 writes a shot twice the window's size", "--size 640x360" in described, described)
+    if shot:
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "doubled_project_reference.png"))
+        check("... which `render` of its command line draws", same, report)
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
 NOISE = """// noise, whose PNG is slow to encode
 void mainImage(out vec4 c, in vec2 f) {
   c = vec4(fract(sin(dot(f, vec2(12.9898, 78.233)) + iTime) * 43758.5453), fract(f * 0.618), 1.0);
@@ -964,6 +1020,7 @@ if __name__ == "__main__":
         light_first_picture_kept(work)
         scaled_then_refined(work)
         shots_in_tiles(work)
+        shots_of_a_project_at_another_size(work)
         shots_written_beside_the_window(work)
         refined_still(work)
     finally:

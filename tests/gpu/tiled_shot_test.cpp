@@ -56,6 +56,58 @@ TEST_F(TiledShotTest, AShotLargerThanTheLargestTargetIsDrawnInPartsAndEqualsTheW
   EXPECT_EQ(again.read().rgba, whole.rgba);
 }
 
+// The window's buffers are the size of its last picture, which the frame
+// budget may have drawn at a lower scale; a shot of another size (F12 while
+// it scales, or --shot-scale) draws the buffer passes anew, into buffers of
+// its own, and is then what `render` draws at its size. The window's
+// buffers stay as they were. The image pass reads its buffer texel by
+// texel: the graph's 40x23 buffer would give a 160x90 shot its corner, and
+// black elsewhere.
+TEST_F(TiledShotTest, AShotOfAnotherSizeThanTheBuffersDrawsThemAnewAndLeavesTheWindowsAlone) {
+  write_file(dir_ / "buffer.frag",
+             "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, fract(iTime + f.x * 0.37), 1.0); }\n");
+  write_file(dir_ / "image.frag",
+             "#pragma channel0 \"buffer.frag\" filter=nearest\n"
+             "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0); }\n");
+  Project project(dir_ / "image.frag", SourceOptions{});
+  ASSERT_EQ(project.reload(), ReloadStatus::Swapped) << join(project.diagnostics());
+  std::string error;
+  ASSERT_TRUE(graph_.update(project, &error)) << error;
+  auto inputs_at = [](glm::ivec2 size) {
+    FrameInputs in;
+    in.time = 0.25f;
+    in.resolution = glm::vec3(size, 1.0f);
+    return in;
+  };
+  const glm::ivec2 scaled(40, 23), size(160, 90);
+  const Image window = graph_.render_frame(project, inputs_at(scaled), scaled);  // as the budget drew it
+  ASSERT_TRUE(graph_.buffers_sized_for(project, scaled));
+  ASSERT_FALSE(graph_.buffers_sized_for(project, size));
+  FrameGraph fresh(renderer_);
+  ASSERT_TRUE(fresh.update(project, &error)) << error;
+  const Image whole = fresh.render_frame(project, inputs_at(size), size);
+
+  TiledShot shot(inputs_at(size), size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "shot.png", {}, true);
+  int slices = 0;
+  while (!shot.draw(graph_, project, 0.0)) ASSERT_LT(++slices, 1000);  // one tile a slice
+  EXPECT_EQ(shot.read().rgba, whole.rgba);
+  EXPECT_TRUE(graph_.buffers_sized_for(project, scaled)) << "the window's buffers are as they were";
+  EXPECT_EQ(graph_.render_image(project, inputs_at(scaled), scaled).rgba, window.rgba);
+
+  TiledShot reading_the_windows(inputs_at(size), size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "old.png", {});
+  while (!reading_the_windows.draw(graph_, project, 1e9)) {
+  }
+  EXPECT_NE(reading_the_windows.read().rgba, whole.rgba) << "what the shot drew before: a test that can fail";
+
+  // A new program part way through the buffer: drawn again from the buffer's first tile.
+  TiledShot again(inputs_at(size), size, renderer_.max_tile(), 1000.0, 0.0, dir_ / "again.png", {}, true);
+  for (int i = 0; i < 3; ++i) ASSERT_FALSE(again.draw(graph_, project, 0.0));
+  again.restart({});
+  while (!again.draw(graph_, project, 1e9)) {
+  }
+  EXPECT_EQ(again.read().rgba, whole.rgba);
+}
+
 // Shots drawn are written on the writer's thread: each in its own file
 // (one of the same name stays as it was), all of them before the writer is
 // gone, each said on stdout.
