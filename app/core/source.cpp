@@ -157,40 +157,61 @@ void for_each_line(std::string_view text, Line line) {
   }
 }
 
-// The names `line` declares samplers by (`uniform [precision] samplerXX
-// NAME[, NAME...]`: the code's own samplers, and glslViewer's u_texN and
-// u_buffer0), each with its 0-based column; none for any other line. `line`
-// has no comments.
+// The names that sampler declarations of `code` declare (`uniform
+// [precision] samplerXX NAME[, NAME...];` at the start of a line, its names
+// perhaps going on over the next lines): the code's own samplers, and
+// glslViewer's u_texN and u_bufferN. Each with its line (1-based) and its
+// 0-based column. `code` has no comments.
 struct DeclaredName {
   std::string_view name;
+  int line = 0;
   size_t column = 0;
 };
-std::vector<DeclaredName> declared_samplers(std::string_view line) {
-  std::vector<DeclaredName> words;
-  lexing::any_word(line, [&](size_t begin, size_t end) {
-    words.push_back({line.substr(begin, end - begin), begin});
-    return words.size() >= 3;
+std::vector<DeclaredName> declared_samplers(std::string_view code) {
+  std::vector<std::string_view> lines;
+  for_each_line(code, [&](std::string_view line, int) {
+    lines.push_back(line);
+    return true;
   });
-  if (words.size() < 2 || words[0].name != "uniform") return {};
-  const size_t type = lexing::is_precision(words[1].name) ? 2 : 1;
-  if (type >= words.size() || words[type].name.find("sampler") > 1) return {};  // sampler2D, isampler3D
-  // The declarators: names at the top level, separated by commas, up to ';'
-  // (an array's size in brackets is skipped).
   std::vector<DeclaredName> names;
-  const size_t after_type = words[type].column + words[type].name.size();
-  bool want_name = true;
-  int brackets = 0;
-  for (size_t at = after_type; at < line.size() && line[at] != ';'; ++at) {
-    const char c = line[at];
-    if (c == '[') ++brackets;
-    else if (c == ']') brackets -= brackets > 0;
-    else if (brackets == 0 && c == ',') want_name = true;
-    else if (brackets == 0 && want_name && lexing::is_word_start(c)) {
-      size_t end = at;
-      while (end < line.size() && lexing::is_word_char(line[end])) ++end;
-      names.push_back({line.substr(at, end - at), at});
-      want_name = false;
-      at = end - 1;
+  for (size_t first = 0; first < lines.size(); ++first) {
+    const std::string_view line = lines[first];
+    std::vector<std::pair<std::string_view, size_t>> words;  // the first three, with their columns
+    lexing::any_word(line, [&](size_t begin, size_t end) {
+      words.emplace_back(line.substr(begin, end - begin), begin);
+      return words.size() >= 3;
+    });
+    if (words.size() < 2 || words[0].first != "uniform" || lexing::skip_blanks(line, 0) != words[0].second) continue;
+    const size_t type = lexing::is_precision(words[1].first) ? 2 : 1;
+    if (type >= words.size() || words[type].first.find("sampler") > 1) continue;  // sampler2D, isampler3D
+    // The declarators: names at the top level, separated by commas, up to
+    // ';' (an array's size in brackets is skipped). A word where a comma
+    // belongs, anything else a declarator cannot hold, or a directive's line
+    // ends them too: a declaration without its ';' takes no names from the
+    // code after it.
+    bool want_name = true, ended = false;
+    int brackets = 0;
+    size_t at = words[type].second + words[type].first.size();
+    for (size_t n = first; !ended && n < lines.size(); ++n, at = 0) {
+      const std::string_view text = lines[n];
+      const size_t start = lexing::skip_blanks(text, 0);
+      if (n > first && start < text.size() && text[start] == '#') break;
+      for (; at < text.size() && !ended; ++at) {
+        const char c = text[at];
+        if (c == '[') ++brackets;
+        else if (c == ']') brackets -= brackets > 0;
+        else if (brackets > 0 || lexing::is_space(c)) continue;
+        else if (c == ',') want_name = true;
+        else if (!want_name || !lexing::is_word_start(c)) ended = true;  // ';', or what ends a broken one
+        else {
+          size_t end = at;
+          while (end < text.size() && lexing::is_word_char(text[end])) ++end;
+          names.push_back({text.substr(at, end - at), static_cast<int>(n) + 1, at});
+          want_name = false;
+          at = end - 1;
+        }
+      }
+      first = n;  // a line the names went on to starts no declaration of its own
     }
   }
   return names;
@@ -676,13 +697,10 @@ class Preprocessor {
       int column = 0;  // 1-based
     };
     std::vector<Declared> declared;
-    for_each_line(body_code, [&](std::string_view line, int number) {
-      for (const DeclaredName& d : declared_samplers(line))
-        if (!glslviewer_pass_read_by(d.name).empty() && (d.name != "u_scene" || postprocessed_))
-          declared.push_back({std::string(d.name), body_map_[static_cast<size_t>(number - 1)],
-                              static_cast<int>(d.column) + 1});
-      return true;
-    });
+    for (const DeclaredName& d : declared_samplers(body_code))
+      if (!glslviewer_pass_read_by(d.name).empty() && (d.name != "u_scene" || postprocessed_))
+        declared.push_back({std::string(d.name), body_map_[static_cast<size_t>(d.line - 1)],
+                            static_cast<int>(d.column) + 1});
     if (declared.empty()) return;
     const std::optional<std::string> active = active_code(defines_text() + body_);
     const std::string_view reads = active ? std::string_view(*active) : body_code;
@@ -855,18 +873,14 @@ Diagnostics unbound_channel_reads(const Source& source, const std::array<bool, 4
     return std::any_of(source.channels.begin(), source.channels.end(),
                        [&](const ChannelSpec& c) { return c.sampler_name == name; });
   };
-  for_each_line(code, [&](std::string_view line, int number) {
-    if (!own_line(number)) return true;
-    for (const DeclaredName& declared : declared_samplers(line)) {
-      const std::string name(declared.name);
-      if (stray_index.count(name) || bound_by_name(name)) continue;
-      const int channel = channel_of_sampler(name);
-      if (channel >= 0 && (name[0] == 'i' || bound[static_cast<size_t>(channel)])) continue;
-      stray_index[name] = strays.size();
-      strays.push_back({name, number, channel});
-    }
-    return true;
-  });
+  for (const DeclaredName& declared : declared_samplers(code)) {
+    const std::string name(declared.name);
+    if (!own_line(declared.line) || stray_index.count(name) || bound_by_name(name)) continue;
+    const int channel = channel_of_sampler(name);
+    if (channel >= 0 && (name[0] == 'i' || bound[static_cast<size_t>(channel)])) continue;
+    stray_index[name] = strays.size();
+    strays.push_back({name, declared.line, channel});
+  }
   if (strays.empty()) return out;
   // A stray sampler warns where it is declared, if any other line reads it.
   std::vector<bool> read(strays.size(), false);

@@ -321,6 +321,42 @@ TEST(Source, EachSamplerOfOneDeclarationIsBound) {
   EXPECT_EQ(warnings.find("u_buffer"), std::string::npos) << warnings;
 }
 
+// A declaration's names may go on over lines: each is bound, and a stray
+// one is warned of on its own line. One without its ';' takes no names from
+// the code after it.
+TEST(Source, ASamplerDeclarationOverLinesBindsEachName) {
+  TempDir dir;
+  write_file(dir / "gv.frag",
+             "uniform sampler2D u_buffer0,\n"
+             "                  u_buffer1;\n"
+             "uniform highp sampler2D\n"
+             "  u_buffer2,\n"
+             "  stray;\n"
+             "void main() {\n  gl_FragColor = texture2D(u_buffer0, vec2(0.5)) + texture2D(u_buffer1, vec2(0.5))"
+             " + texture2D(u_buffer2, vec2(0.5)) + texture2D(stray, vec2(0.5));\n}\n");
+  const fs::path file = fs::absolute(dir / "gv.frag").lexically_normal();
+  const Source image = preprocess(file, {});
+  ASSERT_TRUE(image.ok()) << join(image.errors);
+  EXPECT_EQ(image.channels[3].sampler_name, "u_buffer0");
+  EXPECT_EQ(image.channels[2].sampler_name, "u_buffer1");
+  EXPECT_EQ(image.channels[2].path, glslviewer_pass(file, "BUFFER_1"));
+  EXPECT_EQ(image.channels[1].sampler_name, "u_buffer2");
+  EXPECT_EQ(image.channels[1].path, glslviewer_pass(file, "BUFFER_2"));
+  std::array<bool, 4> bound{};
+  for (size_t c = 0; c < 4; ++c) bound[c] = image.channels[c].kind != ChannelSpec::Kind::None;
+  const std::string warnings = join(unbound_channel_reads(image, bound));
+  EXPECT_NE(warnings.find(file.string() + ":5:3: warning: 'stray'"), std::string::npos) << warnings;
+
+  write_file(dir / "broken.frag",
+             "uniform sampler2D u_tex0\n"
+             "float a, b;\n"
+             "void main() { gl_FragColor = texture2D(u_tex0, vec2(a, b)); }\n");
+  const Source broken = preprocess(fs::absolute(dir / "broken.frag"), {});
+  const std::string said = join(unbound_channel_reads(broken, {}));
+  EXPECT_NE(said.find("broken.frag:1:19: warning: u_tex0 is read"), std::string::npos) << said;
+  EXPECT_EQ(said.find("warning: 'b'"), std::string::npos) << said;
+}
+
 // A shader with a POSTPROCESSING branch is drawn so, and its u_scene reads
 // the scene pass: the file with no define, which defines no POSTPROCESSING.
 TEST(Source, AGlslViewerPostprocessingBranchReadsTheScenePass) {
