@@ -6,6 +6,25 @@
 
 namespace rm {
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// The next tile of `plan`, drawn by draw(tile) and waited for (the window
+// reads input before the next), its time told to the plan.
+template <typename Draw>
+void draw_tile(TilePlan& plan, const std::function<void()>& finish, Draw draw) {
+  const glm::ivec4 tile = plan.next();
+  const auto start = Clock::now();
+  draw(tile);
+  if (finish) finish();
+  else glFinish();
+  plan.drawn(tile, ms_since(start));
+}
+
+}  // namespace
+
 TiledShot::TiledShot(const FrameInputs& inputs, glm::ivec2 size, int max_part, double tile_ms, double per_pixel_ms,
                      std::filesystem::path path, Metadata metadata, bool own_buffers)
     : inputs_(inputs),
@@ -30,9 +49,7 @@ void TiledShot::start_part(size_t index) {
 }
 
 bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms, const std::function<void()>& finish) {
-  using Clock = std::chrono::steady_clock;
   const auto slice_start = Clock::now();
-  auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
   // The shot's own buffers stand in for the graph's while it draws, and
   // only then: the window draws between slices.
   struct SwappedIn {
@@ -63,14 +80,11 @@ bool TiledShot::draw(FrameGraph& graph, const Project& project, double slice_ms,
       start_part(part_ + 1);
       continue;
     }
-    const glm::ivec4 tile = plan_.next();
-    FrameInputs in = inputs_;
-    in.frag_coord_offset = glm::vec2(part.x, part.y);  // gl_FragCoord is the whole shot's
-    const auto start = Clock::now();
-    graph.draw_image(project, in, glm::ivec2(part.z, part.w), target_->framebuffer(), tile);
-    if (finish) finish();  // the tile is done: the window reads input before the next
-    else glFinish();
-    plan_.drawn(tile, ms_since(start));
+    draw_tile(plan_, finish, [&](glm::ivec4 tile) {
+      FrameInputs in = inputs_;
+      in.frag_coord_offset = glm::vec2(part.x, part.y);  // gl_FragCoord is the whole shot's
+      graph.draw_image(project, in, glm::ivec2(part.z, part.w), target_->framebuffer(), tile);
+    });
     ++tiles_;
     if (ms_since(slice_start) >= slice_ms) break;
   }
@@ -87,12 +101,8 @@ bool TiledShot::buffer_tile(FrameGraph& graph, const Project& project, const std
       }
       buffer_plan_.emplace(graph.pass_size(project, next_buffer_, size), tile_ms_);
     }
-    const glm::ivec4 tile = buffer_plan_->next();
-    const auto start = std::chrono::steady_clock::now();
-    graph.draw_pass_region(project, next_buffer_, inputs_, tile);
-    if (finish) finish();
-    else glFinish();
-    buffer_plan_->drawn(tile, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    draw_tile(*buffer_plan_, finish,
+              [&](glm::ivec4 tile) { graph.draw_pass_region(project, next_buffer_, inputs_, tile); });
     ++tiles_;
     if (buffer_plan_->done()) {
       graph.end_pass(project, next_buffer_);
