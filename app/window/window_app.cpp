@@ -625,18 +625,23 @@ class WindowApp {
     // A picture drawn because something changed once gives way to a newer
     // one; a moving one is finished first. A new window size starts over.
     if (drawing_ && (drawing_->window != glm::ivec2(width, height) || (drawing_->resting && redraw))) drawing_.reset();
-    if (!drawing_ && redraw) start_picture(width, height, true);
-    else if (!drawing_ && refining() && builders_idle()) start_picture(width, height, false, samples_);
+    if (!drawing_ && redraw) {
+      if (shots_.empty()) start_picture(width, height, true);  // a shot waiting is of the frame before: it goes first
+    } else if (!drawing_ && refining() && builders_idle()) {
+      start_picture(width, height, false, samples_);
+    }
     // A screenshot in progress goes first: the picture waits for it, so
     // that each turn of the loop draws one slice of the budget, not two.
-    if (!shots_.empty() && !holds_shots()) {
+    // But not for a picture's buffers under way: the shot is of that
+    // picture's frame, whose image reads them whole.
+    if (!shots_.empty() && !holds_shots() && !buffers_under_way()) {
       continue_shot();
       // The picture on screen waits for the shot: presenting it again after
       // each slice cost a 4K shot of tori about as much as its tiles (5.8 to
       // 7.0 s; now 4.5 to 5.7).
       if (!shots_.empty() && present_can_wait()) return;
     }
-    if (drawing_ && shots_.empty() && !holds_for_build()) {
+    if (drawing_ && (shots_.empty() || buffers_under_way()) && !holds_for_build()) {
       continue_picture();
       // So is a picture's: in a 1280x720 window under Xvfb, presenting each
       // slice's partial picture made abstract's 16 samples 4.3 to 4.6 s,
@@ -1257,6 +1262,9 @@ class WindowApp {
   // A background build starts this long after the last swap: saves come in
   // bursts, and one that comes while it runs puts it off at its next stage.
   static constexpr long long kBackgroundDelayNs = 1'000'000'000;
+  // The picture in progress has buffer passes still to draw: they hold
+  // the frame before's output, or some of them this frame's.
+  bool buffers_under_way() const { return drawing_ && drawing_->next_buffer + 1 < project_.passes().size(); }
   // A picture at rest still gathering supersamples (--refine).
   bool refining() const {
     return samples_ > 0 && samples_ < options_.refine && !iconified_ && !too_slow_ && project_.ready();

@@ -35,7 +35,8 @@ on a heavy shader is drawn in tiles, so Q still quits (and says the
 shot was not taken), and a shot drawn in tiles matches `render`; a shot of
 a project at another size than its buffers' (the budget's scale,
 --shot-scale) draws them anew and matches `render`, and a feedback
-project's is at the window's size, with a warning.
+project's is at the window's size, with a warning; F12 while a feedback
+project's buffer is drawn in tiles waits for it, and matches `render`.
 """
 import os
 import re
@@ -300,6 +301,15 @@ def tiled_feedback(work):
     tiled = wait_for(lambda: len(re.findall(r"picture 320x180 scale 1 in .*, its buffers in (\d+) tiles",
                                             open(err).read())) > 10, timeout=20)
     check("its buffer is drawn in tiles, picture after picture", bool(tiled), open(err).read()[-500:])
+    # F12 comes while a frame's buffer is drawn, most likely: the shot waits
+    # for it, and is of that frame. It was of the frame before's buffer,
+    # with this frame's inputs, which `render` of its command line drew
+    # one frame further (3 shots of 4 differed).
+    for attempt in range(3):
+        shot = take_screenshot(window, out)
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "running_feedback.png")) if shot else (
+            False, "no shot")
+        check(f"F12 while it runs ({attempt + 1} of 3) is the frame `render` of its command line draws", same, report)
     xdotool("key", "--window", window, "space")
     time.sleep(0.5)
     shot = take_screenshot(window, out)
