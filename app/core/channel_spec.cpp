@@ -1,5 +1,9 @@
 #include "core/channel_spec.h"
 
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
 #include "core/lexing.h"
 
 namespace rm {
@@ -26,6 +30,14 @@ bool read_setting(std::string_view word, ChannelSpec* spec, std::string* error) 
       return false;
     }
     spec->cube_size = size;
+  } else if ((key == "size" || key == "scale") && spec->shape == ChannelSpec::Shape::Flat &&
+             (spec->kind == ChannelSpec::Kind::Pass || spec->kind == ChannelSpec::Kind::Self)) {
+    std::optional<BufferSize> size = parse_buffer_size(value, key == "size", error);
+    if (!size) {
+      *error = std::string(key) + "=" + *error;
+      return false;
+    }
+    spec->buffer_size = *size;
   } else if (key == "filter" && value == "nearest") s->filter = Sampler::Filter::Nearest;
   else if (key == "filter" && value == "linear") s->filter = Sampler::Filter::Linear;
   else if (key == "filter" && value == "mipmap") s->filter = Sampler::Filter::Mipmap;
@@ -35,13 +47,44 @@ bool read_setting(std::string_view word, ChannelSpec* spec, std::string* error) 
   else if (key == "vflip" && value == "false") s->vflip = false;
   else {
     *error = "unknown channel setting '" + std::string(word) +
-             "' (cube, volume, filter=nearest|linear|mipmap, wrap=clamp|repeat, vflip=true|false, size=N for a cube pass)";
+             "' (cube, volume, filter=nearest|linear|mipmap, wrap=clamp|repeat, vflip=true|false, size=N for a cube pass, size=WxH or scale=F for a buffer)";
     return false;
   }
   return true;
 }
 
 }  // namespace
+
+std::optional<BufferSize> parse_buffer_size(std::string_view text, bool fixed, std::string* error) {
+  BufferSize size;
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  if (fixed) {
+    auto [x, ex] = std::from_chars(begin, end, size.width);
+    auto [y, ey] = x != end && *x == 'x' ? std::from_chars(x + 1, end, size.height) : std::from_chars_result{x, std::errc::invalid_argument};
+    const bool ok = ex == std::errc() && ey == std::errc() && y == end && lexing::is_digit(*begin) &&
+                    lexing::is_digit(x[1]) && size.width >= 1 && size.height >= 1 &&
+                    size.width <= BufferSize::kMaxSide && size.height <= BufferSize::kMaxSide;
+    if (ok) return size;
+    *error = "WxH expects a width and a height from 1 to " + std::to_string(BufferSize::kMaxSide) + ", not '" +
+             std::string(text) + "'";
+    return std::nullopt;
+  }
+  auto [last, ec] = std::from_chars(begin, end, size.scale);
+  if (ec == std::errc() && last == end && !text.empty() && (lexing::is_digit(*begin) || *begin == '.') &&
+      size.scale > 0 && size.scale <= 1)
+    return size;
+  *error = "F expects a share of the picture's size above 0 and at most 1, not '" + std::string(text) + "'";
+  return std::nullopt;
+}
+
+std::string to_string(const BufferSize& size) {
+  if (size.width > 0) return "size=" + std::to_string(size.width) + "x" + std::to_string(size.height);
+  if (size.scale <= 0) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "scale=%g", size.scale);
+  return buf;
+}
 
 Sampler default_sampler(ChannelSpec::Kind kind, ChannelSpec::Shape shape) {
   using K = ChannelSpec::Kind;
@@ -142,6 +185,7 @@ std::string channel_spec_text(const ChannelSpec& spec, const std::string& file) 
   if (spec.shape == ChannelSpec::Shape::Cube) out += " cube";
   if (spec.shape == ChannelSpec::Shape::Volume) out += " volume";
   if (spec.cube_size > 0) out += " size=" + std::to_string(spec.cube_size);
+  if (spec.buffer_size.given()) out += " " + to_string(spec.buffer_size);
   const Sampler d = default_sampler(spec.kind, spec.shape), s = spec.sampler;
   if (s.filter != d.filter)
     out += s.filter == Sampler::Filter::Nearest ? " filter=nearest"

@@ -9,7 +9,9 @@
 //   #pragma channel1 "noise.bin" volume         a volume (sampler3D)
 // followed by Shadertoy's sampler settings where the defaults do not fit:
 //   filter=nearest|linear|mipmap  wrap=clamp|repeat  vflip=true|false
-// and, for a Cube A pass, its face size: size=N (1024, as on Shadertoy).
+// and, for a Cube A pass, its face size: size=N (1024, as on Shadertoy);
+// for a flat buffer pass (or `self`), a size of its own instead of the
+// picture's: size=WxH, or scale=F, a share of the picture's per axis.
 // No GL here: the core's graph (core/frame_graph.h) turns specs into textures.
 #pragma once
 #include <filesystem>
@@ -33,6 +35,22 @@ struct Sampler {
   bool operator==(const Sampler&) const = default;
 };
 
+// A flat buffer pass's size where it is not the picture's: fixed, or a
+// share of the picture's per axis. Spelled `size=WxH` or `scale=F` in a
+// #pragma channelN, and as glslViewer's comment after a buffer's
+// declaration (`uniform sampler2D u_buffer0; // 512x512`, or `// 0.5`).
+struct BufferSize {
+  static constexpr int kMaxSide = 4096;  // as a cube face's: two RGBA32F targets of 4096x4096 hold 512 MiB
+  int width = 0, height = 0;  // > 0: fixed
+  double scale = 0;           // else, > 0: this share of the picture's; else the picture's size
+  bool given() const { return width > 0 || scale > 0; }
+  bool operator==(const BufferSize&) const = default;
+};
+// Reads `WxH` (each from 1 to kMaxSide) when `fixed`, else a share `F`
+// (0 < F <= 1). nullopt with *error set on anything else.
+std::optional<BufferSize> parse_buffer_size(std::string_view text, bool fixed, std::string* error);
+std::string to_string(const BufferSize& size);  // "size=512x256", "scale=0.5"; "" when not given
+
 struct ChannelSpec {
   enum class Kind { None, Image, Pass, Self, Keyboard, Black };
   // What the shader samples: the prelude declares sampler2D, samplerCube or sampler3D.
@@ -46,6 +64,7 @@ struct ChannelSpec {
   // A sampler of the shader's own that the channel binds too, besides
   // iChannelN and u_texN: glslViewer's u_buffer0 (core/glslviewer_passes.h).
   std::string sampler_name;
+  BufferSize buffer_size;  // a flat pass's own size, when the spec gives one
   bool operator==(const ChannelSpec&) const = default;
 };
 

@@ -175,7 +175,11 @@ FrameGraph::StandIns FrameGraph::stand_ins(bool cubemap, const std::array<Channe
       }
       case ChannelSpec::Kind::Pass: {
         const bool cube = spec.shape == ChannelSpec::Shape::Cube;
-        in.texture = make(target, format_of(cube), glm::ivec3(cube ? even : odd, 1), mip_levels(cube ? even : odd));
+        // A buffer of a fixed size: its sides, powers of two or not, as a small texture's.
+        const BufferSize& own = spec.buffer_size;
+        auto side = [&](int n) { return (n & (n - 1)) == 0 ? even.x : odd.x; };
+        const glm::ivec2 size = cube ? even : own.width > 0 ? glm::ivec2(side(own.width), side(own.height)) : odd;
+        in.texture = make(target, format_of(cube), glm::ivec3(size, 1), mip_levels(size));
         break;
       }
       case ChannelSpec::Kind::Keyboard:
@@ -256,9 +260,13 @@ std::vector<FrameGraph::PassTime> FrameGraph::pass_times() const {
   return out;
 }
 
-// The size of one of the pass's targets: a cube face's, or the picture's.
+// The size of one of the pass's targets: a cube face's, the buffer's own
+// (fixed, or a share of the picture's), or the picture's.
 static glm::ivec2 face_size(const Pass& pass, glm::ivec2 picture) {
-  return pass.cube ? glm::ivec2(pass.cube_size) : picture;
+  if (pass.cube) return glm::ivec2(pass.cube_size);
+  if (pass.size.width > 0) return {pass.size.width, pass.size.height};
+  if (pass.size.scale > 0) return glm::max(glm::ivec2(1), glm::ivec2(glm::round(glm::dvec2(picture) * pass.size.scale)));
+  return picture;
 }
 
 glm::ivec2 FrameGraph::pass_size(const Project& project, size_t index, glm::ivec2 picture) const {
@@ -380,9 +388,9 @@ void FrameGraph::restart() {
 
 bool FrameGraph::buffers_sized_for(const Project& project, glm::ivec2 size) const {
   return std::all_of(project.passes().begin(), project.passes().end(), [&](const Pass& pass) {
-    if (pass.is_image || pass.cube) return true;  // a cube's faces have a size of their own
+    if (pass.is_image || pass.cube || pass.size.width > 0) return true;  // of a size of their own
     const auto it = buffers_.find(pass.file);
-    return it != buffers_.end() && it->second.size == size;
+    return it != buffers_.end() && it->second.size == face_size(pass, size);
   });
 }
 

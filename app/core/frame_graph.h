@@ -40,9 +40,9 @@ class FrameGraph {
   void hand_over(std::vector<std::pair<ChannelSpec, ImageTextures::Entry>> read) { images_.hand_over(std::move(read)); }
 
   // One frame: every buffer pass into its target, then the image pass over
-  // `target`'s (0,0,size) viewport. Buffers are the size of the picture; a
-  // new size keeps their content where it fits. A Cube A pass draws its six
-  // faces at its own size.
+  // `target`'s (0,0,size) viewport. Buffers are the size of the picture, or
+  // of their own (Pass::size); a new size keeps their content where it
+  // fits. A Cube A pass draws its six faces at its own size.
   void draw(const Project& project, const FrameInputs& in, glm::ivec2 size, GLuint target = 0);
   // Only the buffer passes: the frames before the one `render` writes.
   void draw_buffers(const Project& project, const FrameInputs& in, glm::ivec2 size);
@@ -118,7 +118,7 @@ class FrameGraph {
   // The latest output of a buffer pass (tests read it); 0 if none.
   GLuint buffer_texture(const fs::path& pass) const;
 
-  // Whether every buffer pass the size of the picture holds one of `size`,
+  // Whether every buffer pass sized by the picture holds one of `size`,
   // so that the image pass at `size` reads them as they are. The window's
   // buffers are the size of its last picture, which the frame budget may
   // have drawn at a lower scale.

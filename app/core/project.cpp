@@ -110,6 +110,12 @@ PassWalk walk_passes(const fs::path& image, const std::function<VisitedPass(cons
     if (i == 0 && source->cubemap)
       graph_error(image, "the image pass defines mainCubemap: open the pass that reads the cube map");
     for (const ChannelSpec& channel : source->channels) {
+      if (channel.kind == ChannelSpec::Kind::Self && channel.buffer_size.given()) {  // a size for itself
+        if (i == 0) graph_error(file, "the image pass is the picture's size: size=WxH and scale=F are for buffers");
+        ChannelSpec itself = channel;
+        itself.path = file;
+        reads.push_back({file, itself});
+      }
       if (channel.kind != ChannelSpec::Kind::Pass) continue;
       reads.push_back({file, channel});
       if (channel.path == image)
@@ -133,6 +139,13 @@ PassWalk walk_passes(const fs::path& image, const std::function<VisitedPass(cons
       int& size = walk.cube_size[channel.path];
       size = std::max(size, channel.cube_size);
     }
+    if (!channel.buffer_size.given()) continue;
+    // A buffer's own size: every reader that gives one gives the same.
+    const auto [given, first] = walk.buffer_size.emplace(channel.path, channel.buffer_size);
+    if (!first && given->second != channel.buffer_size)
+      graph_error(reader, "'" + channel.path.filename().string() + "' is read here with " +
+                              to_string(channel.buffer_size) + " and elsewhere with " + to_string(given->second) +
+                              ": a buffer has one size");
   }
   return walk;
 }
@@ -225,7 +238,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
     scene.warm_up(on_built);
     times_.warm += scene.times().warm;
   }
-  pending_ = PendingSwap{walk.reached, walk.cube_size, std::move(swapped)};
+  pending_ = PendingSwap{walk.reached, walk.cube_size, walk.buffer_size, std::move(swapped)};
   return ReloadStatus::Swapped;
 }
 
@@ -287,7 +300,7 @@ ReloadStatus Project::take_exact(std::vector<Scene::ExactResult> results) {
   if (failed || !swapped.empty()) diagnostics_ = latest_diagnostics();
   if (failed) return ReloadStatus::Failed;
   if (swapped.empty()) return ReloadStatus::Unchanged;
-  pending_ = PendingSwap{shown_.reached, shown_.cube_size, std::move(swapped)};
+  pending_ = PendingSwap{shown_.reached, shown_.cube_size, shown_.buffer_size, std::move(swapped)};
   return ReloadStatus::Swapped;
 }
 
@@ -333,6 +346,7 @@ void Project::commit() {
       pass.cube = true;
       pass.cube_size = cube->second > 0 ? cube->second : ChannelSpec::kDefaultCubeSize;
     }
+    if (auto size = swap.buffer_size.find(file); size != swap.buffer_size.end()) pass.size = size->second;
     pass.channels = channels_of(file, pass.scene->source());
     passes_.push_back(std::move(pass));
   }

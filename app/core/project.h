@@ -29,6 +29,7 @@ struct Pass {
   bool is_image = false;
   bool cube = false;   // a Cube A pass: drawn into the six faces of a cube map
   int cube_size = 0;   // its face size
+  BufferSize size;     // a flat buffer's own size, if a reader gives one; else the picture's
 };
 
 // Where a project's passes come from: a shader file is the image pass and
@@ -53,6 +54,7 @@ struct VisitedPass {
 struct PassWalk {
   std::vector<fs::path> reached;       // image first
   std::map<fs::path, int> cube_size;   // the Cube A passes: the largest size=N a reader gives; 0: none
+  std::map<fs::path, BufferSize> buffer_size;  // the flat buffers a reader gives a size of their own
   bool ok = true;                      // every pass built, and the graph holds together
 };
 // Also warns of channels a pass reads with nothing bound (`image_channels_given`:
@@ -169,6 +171,7 @@ class Project {
   struct PendingSwap {  // what prepare() found, for commit()
     std::vector<fs::path> reached;
     std::map<fs::path, int> cube_size;
+    std::map<fs::path, BufferSize> buffer_size;
     std::vector<fs::path> rebuilt;
   };
   std::optional<PendingSwap> pending_;

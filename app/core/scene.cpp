@@ -87,8 +87,9 @@ ReloadStatus Scene::prepare(const Cancelled& cancelled, bool compile_allowed) {
   }
   // Only comments changed: the program would be the one on screen, so it and
   // its picture stay. Not after a failed save (its errors are on screen), nor
-  // while a tweak shows (its exact program is still to be built).
-  if (program_ && !showing_twin_ && count_errors(diagnostics_) == 0 &&
+  // while a tweak shows (its exact program is still to be built), nor when a
+  // comment changed what a channel reads (glslViewer's buffer sizes).
+  if (program_ && !showing_twin_ && count_errors(diagnostics_) == 0 && source.channels == good_source_.channels &&
       lexing::code_only(source.text) == lexing::code_only(good_source_.text))
     return ReloadStatus::Unchanged;
   for (auto it = cache_.begin(); it != cache_.end(); ++it) {

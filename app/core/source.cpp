@@ -695,12 +695,15 @@ class Preprocessor {
       std::string name;
       Origin at;       // its declaration's line
       int column = 0;  // 1-based
+      BufferSize size;
     };
     std::vector<Declared> declared;
-    for (const DeclaredName& d : declared_samplers(body_code))
-      if (!glslviewer_pass_read_by(d.name).empty() && (d.name != "u_scene" || postprocessed_))
-        declared.push_back({std::string(d.name), body_map_[static_cast<size_t>(d.line - 1)],
-                            static_cast<int>(d.column) + 1});
+    for (const DeclaredName& d : declared_samplers(body_code)) {
+      if (glslviewer_pass_read_by(d.name).empty() || (d.name == "u_scene" && !postprocessed_)) continue;
+      const Origin at = body_map_[static_cast<size_t>(d.line - 1)];
+      declared.push_back({std::string(d.name), at, static_cast<int>(d.column) + 1, {}});
+      if (d.name != "u_scene") declared.back().size = size_after(d, at);
+    }
     if (declared.empty()) return;
     const std::optional<std::string> active = active_code(defines_text() + body_);
     const std::string_view reads = active ? std::string_view(*active) : body_code;
@@ -726,8 +729,35 @@ class Preprocessor {
       out_.channels[static_cast<size_t>(channel)] =
           ChannelSpec{ChannelSpec::Kind::Pass, ChannelSpec::Shape::Flat,
                       glslviewer_pass(file, glslviewer_pass_read_by(d.name)),
-                      Sampler{Sampler::Filter::Linear, Sampler::Wrap::Clamp, false}, 0, d.name};
+                      Sampler{Sampler::Filter::Linear, Sampler::Wrap::Clamp, false}, 0, d.name, d.size};
     }
+  }
+
+  // glslViewer's size of a buffer, in a comment after its declaration:
+  // `uniform sampler2D u_buffer0; // 512x512` (fixed) or `// 0.5` (a share
+  // of the picture's). A comment that starts with a number is read as one.
+  BufferSize size_after(const DeclaredName& d, Origin at) {
+    std::string_view line;
+    for_each_line(body_, [&](std::string_view text, int number) {
+      if (number == d.line) line = text;
+      return number < d.line;
+    });
+    size_t i = lexing::skip_blanks(line, d.column + d.name.size());
+    if (i >= line.size() || line[i] != ';') return {};
+    i = lexing::skip_blanks(line, i + 1);
+    if (line.substr(i, 2) != "//") return {};
+    i = lexing::skip_blanks(line, i + 2);
+    const size_t end = std::min(line.find_first_of(" \t\r", i), line.size());
+    const std::string_view token = line.substr(i, end - i);
+    if (token.empty() || !(lexing::is_digit(token[0]) || token[0] == '.')) return {};
+    std::string why;
+    if (std::optional<BufferSize> size = parse_buffer_size(token, token.find('x') != std::string_view::npos, &why))
+      return *size;
+    error(at.file, at.line, static_cast<int>(i) + 1,
+          "the size of '" + std::string(d.name) + "' after its declaration is WxH (each from 1 to " +
+              std::to_string(BufferSize::kMaxSide) + ") or a share of the picture's (above 0, at most 1), not '" +
+              std::string(token) + "'");
+    return {};
   }
 
   const SourceOptions& options_;

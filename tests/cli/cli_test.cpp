@@ -236,6 +236,54 @@ TEST_F(Cli, GlslViewerBuffersDrawInTheOrderOfTheirNumbers) {
   EXPECT_FLOAT_EQ(red_of((dir_ / "order.frag").string(), ""), 0.75f);
 }
 
+// A buffer of a size of its own: glslViewer's comment after the
+// declaration (`// 2x1` fixed, `// 0.5` half the picture's) or a pragma's
+// size=WxH. The buffer pass draws at that size, its u_resolution and
+// iResolution are that size, and its readers' textureSize and
+// iChannelResolution say so. Two readers that give two sizes are an error.
+TEST_F(Cli, ABufferDrawsAtASizeOfItsOwn) {
+  write_file(dir_ / "sized.frag",
+             "uniform sampler2D u_buffer0; // 2x1\nuniform sampler2D u_buffer1; // 0.5\n"
+             "uniform vec2 u_resolution;\nvoid main() {\n#if defined(BUFFER_0)\n"
+             "  gl_FragColor = gl_FragCoord.x < 1.0 ? vec4(1.0, 0.0, 0.0, 1.0) : vec4(0.0, 1.0, 0.0, 1.0);\n"
+             "#elif defined(BUFFER_1)\n  gl_FragColor = vec4(u_resolution / 255.0, 0.0, 1.0);\n#else\n"
+             "  vec2 st = gl_FragCoord.xy / u_resolution;\n"
+             "  gl_FragColor = gl_FragCoord.y < 45.0 ? texture2D(u_buffer0, st)\n"
+             "      : vec4(vec2(textureSize(u_buffer1, 0)) / 255.0, texture2D(u_buffer1, st).g, 1.0);\n#endif\n}\n");
+  test::Outcome r = run("render " + (dir_ / "sized.frag").string() + " -o " + (dir_ / "s.exr").string() + " --size 160x90");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<float> px = test::read_pixels(dir_ / "s.exr");
+  ASSERT_EQ(px.size(), 160u * 90u * 4u);
+  auto at = [&](int x, int y) {  // y up, as gl_FragCoord
+    const size_t i = (static_cast<size_t>(89 - y) * 160 + static_cast<size_t>(x)) * 4;
+    return std::vector<float>(px.begin() + static_cast<long>(i), px.begin() + static_cast<long>(i) + 3);
+  };
+  EXPECT_EQ(at(10, 10), (std::vector<float>{1.0f, 0.0f, 0.0f})) << "the 2x1 buffer's left texel, stretched";
+  EXPECT_EQ(at(150, 10), (std::vector<float>{0.0f, 1.0f, 0.0f})) << "its right one";
+  EXPECT_EQ(at(80, 80), (std::vector<float>{80.0f / 255.0f, 45.0f / 255.0f, 45.0f / 255.0f}));
+
+  write_file(dir_ / "buffer.frag", "#pragma channel0 self size=3x2\n"
+                                   "void mainImage(out vec4 c, in vec2 f) {\n"
+                                   "  c = vec4(iResolution.xy, iChannelResolution[0].xy) / 255.0;\n}\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer.frag\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n"
+                                  "  c = texelFetch(iChannel0, ivec2(2, 1), 0) + vec4(0.0, 0.0, 0.0, iChannelResolution[0].x);\n}\n");
+  r = run("render " + (dir_ / "image.frag").string() + " -o " + (dir_ / "i.exr").string() + " --size 8x8");
+  ASSERT_EQ(r.status, 0) << r.err;
+  px = test::read_pixels(dir_ / "i.exr");
+  ASSERT_EQ(px.size(), 8u * 8u * 4u);
+  EXPECT_EQ(std::vector<float>(px.begin(), px.begin() + 4),
+            (std::vector<float>{3.0f / 255.0f, 2.0f / 255.0f, 3.0f / 255.0f, 2.0f / 255.0f + 3.0f}));
+
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer.frag\" scale=0.5\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n");
+  r = run("check " + (dir_ / "image.frag").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, (dir_ / "buffer.frag").string() +
+                       ": error: 'buffer.frag' is read here with size=3x2 and elsewhere with scale=0.5: a buffer has "
+                       "one size\n");
+}
+
 // A glslViewer shader with a POSTPROCESSING branch is drawn so on screen,
 // and its u_scene reads the scene pass (the file with no define) of this
 // frame, which may read a buffer of its own.

@@ -912,6 +912,34 @@ def shots_of_a_project_at_another_size(work):
     xdotool("key", "--window", window, "q")
     proc.wait(timeout=10)
 
+    # Buffers of a size of their own, scaled with the picture or fixed: F12
+    # while the budget scales the picture draws the first anew at half the
+    # shot's size, and reads the second as it is.
+    for name in ("half_buffer.frag", "fixed_buffer.frag"):
+        with open(os.path.join(work, name), "w") as f:
+            f.write(ANIMATED)
+    scene, proc, err, out, window = start(work, "sized_project.frag", SIZED_IMAGE, "a project with sized buffers opens",
+                                          "--target-fps", "1000", "--refine", "0", "--shot-dir", work, "--no-ui")
+    if not window:
+        return
+    scaled = wait_for(lambda: re.search(r"picture \d+x\d+ scale 0\.\d+", open(err).read()), timeout=10)
+    check("the budget scales a project with sized buffers", bool(scaled), open(err).read()[-500:])
+    shot = take_screenshot(window, out)
+    check("F12 while it moves writes a shot", bool(shot))
+    if shot:
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "sized_project_reference.png"))
+        check("... which `render` of its command line draws, each buffer at its own size", same, report)
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
+SIZED_IMAGE = """#pragma channel0 "half_buffer.frag" scale=0.5
+#pragma channel1 "fixed_buffer.frag" size=64x32
+void mainImage(out vec4 c, in vec2 f) {
+  vec2 uv = f / iResolution.xy;
+  c = vec4(texture(iChannel0, uv).rg, texture(iChannel1, uv.yx).g, 1.0);
+}
+"""
 
 NOISE = """// noise, whose PNG is slow to encode
 void mainImage(out vec4 c, in vec2 f) {

@@ -269,6 +269,35 @@ TEST_F(Passes, StandInsAreLikeTheTexturesThePassReads) {
   }
 }
 
+// A buffer's own size is in its reader's text: a save that changes only
+// glslViewer's size comment is no comment-only save, and the buffer draws
+// at the new size. A warm-up's stand-in for it has the same sides, powers
+// of two or not, which llvmpipe's code depends on.
+TEST_F(Passes, ABuffersOwnSizeFollowsItsCommentAndItsStandIn) {
+  auto write_scene = [&](const std::string& size) {
+    write_file(dir_ / "sized.frag", "uniform sampler2D u_buffer0; // " + size + "\nvoid main() {\n#ifdef BUFFER_0\n"
+                                    "  gl_FragColor = vec4(1.0);\n#else\n"
+                                    "  gl_FragColor = vec4(vec2(textureSize(u_buffer0, 0)), 0.0, 1.0);\n#endif\n}\n");
+  };
+  write_scene("8x2");
+  load("sized.frag");
+  EXPECT_EQ(at(frame(0), 0, 0), glm::vec4(8, 2, 0, 1));
+  for (const std::string size : {"5x3", "16x4", "0.5"}) {
+    write_scene(size);
+    ASSERT_EQ(project_->reload(), ReloadStatus::Swapped) << size << join(project_->diagnostics());
+    std::string error;
+    ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+    const glm::vec4 sides = size == "5x3" ? glm::vec4(5, 3, 0, 1) : size == "16x4" ? glm::vec4(16, 4, 0, 1)
+                                                                                : glm::vec4(3, 2, 0, 1);  // half of 6x4
+    EXPECT_EQ(at(frame(1, {6, 4}), 0, 0), sides) << size;
+    if (size == "0.5") continue;  // its sides depend on the picture's, which a warm-up does not know
+    const Pass& image = project_->image();
+    const auto real = graph_.pass_states(*project_).at(image.file);
+    const FrameGraph::StandIns stand_ins = graph_.stand_ins(false, project_->channels_of(image.file, image.scene->source()));
+    EXPECT_EQ(described(stand_ins.state.channels[3].texture), described(real.channels[3].texture)) << size;
+  }
+}
+
 TEST_F(Passes, APreparedReloadLeavesTheRunningGraphDrawingUntilItIsCommitted) {
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
   write_file(dir_ / "image.frag", std::string(kShowChannel0));

@@ -357,6 +357,57 @@ TEST(Source, ASamplerDeclarationOverLinesBindsEachName) {
   EXPECT_EQ(said.find("warning: 'b'"), std::string::npos) << said;
 }
 
+// A buffer's own size: `size=WxH` or `scale=F` in a #pragma channelN (for
+// a buffer or `self`), and glslViewer's comment after a buffer's
+// declaration, `// 512x512` or `// 0.5`; a comment that starts with a
+// number and is neither is an error at it.
+TEST(Source, ABufferHasASizeOfItsOwnByPragmaOrGlslViewerComment) {
+  TempDir dir;
+  write_file(dir / "a.frag", kMain);
+  write_file(dir / "scene.frag", "#pragma channel0 \"a.frag\" size=256x128 filter=nearest\n"
+                                 "#pragma channel1 self scale=0.25\n" + std::string(kMain));
+  const Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.channels[0].buffer_size, (BufferSize{256, 128, 0}));
+  EXPECT_EQ(s.channels[0].sampler.filter, Sampler::Filter::Nearest);
+  EXPECT_EQ(s.channels[1].buffer_size, (BufferSize{0, 0, 0.25}));
+  EXPECT_EQ(channel_spec_text(s.channels[0], "a.frag"), "\"a.frag\" size=256x128 filter=nearest");
+  for (const auto& [pragma, message] : std::vector<std::pair<std::string, std::string>>{
+           {"\"a.frag\" size=0x4", "size=WxH expects a width and a height from 1 to 4096, not '0x4'"},
+           {"\"a.frag\" size=4097x4", "size=WxH expects a width and a height from 1 to 4096, not '4097x4'"},
+           {"\"a.frag\" size=16", "size=WxH expects a width and a height from 1 to 4096, not '16'"},
+           {"\"a.frag\" scale=1.5", "scale=F expects a share of the picture's size above 0 and at most 1, not '1.5'"},
+           {"\"a.frag\" scale=nan", "scale=F expects a share of the picture's size above 0 and at most 1, not 'nan'"},
+           {"\"rock.png\" size=4x4", "unknown channel setting 'size=4x4'"},
+       }) {
+    write_file(dir / "bad.frag", "#pragma channel0 " + pragma + "\n" + std::string(kMain));
+    const Source bad = preprocess(dir / "bad.frag", {});
+    ASSERT_EQ(bad.errors.size(), 1u) << pragma;
+    EXPECT_NE(bad.errors[0].message.find(message), std::string::npos) << bad.errors[0].message;
+  }
+
+  write_file(dir / "gv.frag",
+             "uniform sampler2D u_buffer0; // 512x256\n"
+             "uniform sampler2D u_buffer1  ;  //  .5 of the window\n"
+             "uniform sampler2D u_buffer2; // the trail, at the window's size\n"
+             "void main() {\n  gl_FragColor = texture2D(u_buffer0, vec2(0.5)) + texture2D(u_buffer1, vec2(0.5))"
+             " + texture2D(u_buffer2, vec2(0.5));\n}\n");
+  const Source gv = preprocess(fs::absolute(dir / "gv.frag").lexically_normal(), {});
+  ASSERT_TRUE(gv.ok()) << join(gv.errors);
+  EXPECT_EQ(gv.channels[3].sampler_name, "u_buffer0");
+  EXPECT_EQ(gv.channels[3].buffer_size, (BufferSize{512, 256, 0}));
+  EXPECT_EQ(gv.channels[2].buffer_size, (BufferSize{0, 0, 0.5}));
+  EXPECT_FALSE(gv.channels[1].buffer_size.given());
+  write_file(dir / "gv.frag", "uniform sampler2D u_buffer0; // 512 x 512\n"
+                              "void main() { gl_FragColor = texture2D(u_buffer0, vec2(0.5)); }\n");
+  const Source wrong = preprocess(dir / "gv.frag", {});
+  ASSERT_EQ(wrong.errors.size(), 1u);
+  EXPECT_EQ(wrong.errors[0].line, 1);
+  EXPECT_EQ(wrong.errors[0].column, 33);
+  EXPECT_EQ(wrong.errors[0].message, "the size of 'u_buffer0' after its declaration is WxH (each from 1 to 4096) or a "
+                                     "share of the picture's (above 0, at most 1), not '512'");
+}
+
 // A shader with a POSTPROCESSING branch is drawn so, and its u_scene reads
 // the scene pass: the file with no define, which defines no POSTPROCESSING.
 TEST(Source, AGlslViewerPostprocessingBranchReadsTheScenePass) {
