@@ -1,7 +1,6 @@
 #include "core/channel_spec.h"
 
 #include <charconv>
-#include <cmath>
 #include <cstdio>
 
 #include "core/lexing.h"
@@ -60,10 +59,12 @@ std::optional<BufferSize> parse_buffer_size(std::string_view text, bool fixed, s
   const char* begin = text.data();
   const char* end = text.data() + text.size();
   if (fixed) {
-    auto [x, ex] = std::from_chars(begin, end, size.width);
-    auto [y, ey] = x != end && *x == 'x' ? std::from_chars(x + 1, end, size.height) : std::from_chars_result{x, std::errc::invalid_argument};
-    const bool ok = ex == std::errc() && ey == std::errc() && y == end && lexing::is_digit(*begin) &&
-                    lexing::is_digit(x[1]) && size.width >= 1 && size.height >= 1 &&
+    // Digits, 'x', digits: from_chars alone would take a sign.
+    const auto [x, ex] = std::from_chars(begin, end, size.width);
+    const bool by = ex == std::errc() && lexing::is_digit(*begin) && x + 1 < end && *x == 'x' && lexing::is_digit(x[1]);
+    const auto [y, ey] =
+        by ? std::from_chars(x + 1, end, size.height) : std::from_chars_result{x, std::errc::invalid_argument};
+    const bool ok = ey == std::errc() && y == end && size.width >= 1 && size.height >= 1 &&
                     size.width <= BufferSize::kMaxSide && size.height <= BufferSize::kMaxSide;
     if (ok) return size;
     *error = "WxH expects a width and a height from 1 to " + std::to_string(BufferSize::kMaxSide) + ", not '" +
