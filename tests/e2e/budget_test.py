@@ -725,8 +725,10 @@ def no_compile_in_the_window_for_glslviewer_buffers(work):
     # glslViewer's buffers are passes that draw the one file with a define,
     # read by samplers of the shader's own (u_buffer0): the warm-up binds
     # those as the window does, or the window would compile each pass again.
+    # u_buffer0 has a size of its own, whose sides are powers of two: the
+    # warm-up's stand-in for it must be one too.
     seed = f"{time.time_ns() % 999983 / 999983:.6f}"  # nothing in Mesa's cache
-    code = ("uniform sampler2D u_buffer0;\nuniform sampler2D u_doubleBuffer0;\nuniform vec2 u_resolution;\n"
+    code = ("uniform sampler2D u_buffer0; // 256x128\nuniform sampler2D u_doubleBuffer0;\nuniform vec2 u_resolution;\n"
             "uniform float u_time;\n#define S a = fract(a * 1.37 + sin(a + SEED));\n#define S8 S S S S S S S S\n"
             "#define S64 S8 S8 S8 S8 S8 S8 S8 S8\nvoid main() {\n  vec2 st = gl_FragCoord.xy / u_resolution;\n"
             "  float a = st.x;\n  if (u_time < -1.0) { S64 S64 S64 S64 S64 S64 S64 S64 }\n"
