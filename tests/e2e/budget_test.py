@@ -880,17 +880,11 @@ def shots_of_a_project_at_another_size(work):
     # to read the scaled buffer: its corner, and black elsewhere.
     with open(os.path.join(work, "texel_buffer.frag"), "w") as f:
         f.write(ANIMATED)
-    scene, proc, err, out, window = start(work, "scaled_project.frag", TEXEL_IMAGE, "a moving project's window opens",
-                                          "--target-fps", "1000", "--refine", "0", "--shot-dir", work, "--no-ui")
-    if not window:
+    opened = shot_while_the_budget_scales(work, "scaled_project.frag", TEXEL_IMAGE, "a moving project",
+                                          "the buffer drawn anew at the shot's size")
+    if not opened:
         return
-    scaled = wait_for(lambda: re.search(r"picture \d+x\d+ scale 0\.\d+", open(err).read()), timeout=10)
-    check("the budget draws its buffer and image at a lower scale", bool(scaled), open(err).read()[-500:])
-    shot = take_screenshot(window, out)
-    check("F12 while it moves writes a shot", bool(shot))
-    if shot:
-        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "scaled_project_reference.png"))
-        check("... which `render` of its command line draws: the buffer drawn anew at the shot's size", same, report)
+    proc, err, window = opened
     marker = len(open(err).read())
     check("... and the window goes on at its scale",
           wait_for(lambda: re.search(r"picture \d+x\d+ scale 0\.\d+", open(err).read()[marker:])),
@@ -920,19 +914,31 @@ def shots_of_a_project_at_another_size(work):
     for name in ("half_buffer.frag", "fixed_buffer.frag"):
         with open(os.path.join(work, name), "w") as f:
             f.write(ANIMATED)
-    scene, proc, err, out, window = start(work, "sized_project.frag", SIZED_IMAGE, "a project with sized buffers opens",
+    opened = shot_while_the_budget_scales(work, "sized_project.frag", SIZED_IMAGE, "a project with sized buffers",
+                                          "each buffer at its own size")
+    if not opened:
+        return
+    proc, err, window = opened
+    xdotool("key", "--window", window, "q")
+    proc.wait(timeout=10)
+
+
+def shot_while_the_budget_scales(work, name, image, what, how):
+    """Opens `image` as NAME with a budget of 1000 fps, and checks that F12
+    while the budget scales it writes what `render` of the shot's command
+    line draws (`how`). Gives (proc, err, window), or None."""
+    scene, proc, err, out, window = start(work, name, image, f"the window of {what} opens",
                                           "--target-fps", "1000", "--refine", "0", "--shot-dir", work, "--no-ui")
     if not window:
-        return
+        return None
     scaled = wait_for(lambda: re.search(r"picture \d+x\d+ scale 0\.\d+", open(err).read()), timeout=10)
-    check("the budget scales a project with sized buffers", bool(scaled), open(err).read()[-500:])
+    check(f"the budget draws {what} at a lower scale", bool(scaled), open(err).read()[-500:])
     shot = take_screenshot(window, out)
     check("F12 while it moves writes a shot", bool(shot))
     if shot:
-        same, report = matches_render(BINARY, shot, scene, os.path.join(work, "sized_project_reference.png"))
-        check("... which `render` of its command line draws, each buffer at its own size", same, report)
-    xdotool("key", "--window", window, "q")
-    proc.wait(timeout=10)
+        same, report = matches_render(BINARY, shot, scene, os.path.join(work, name.replace(".frag", "_reference.png")))
+        check(f"... which `render` of its command line draws: {how}", same, report)
+    return proc, err, window
 
 
 SIZED_IMAGE = """#pragma channel0 "half_buffer.frag" scale=0.5
