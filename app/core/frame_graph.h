@@ -139,6 +139,7 @@ class FrameGraph {
   struct Buffer {
     bool cube = false;
     int drawn_generation = -1;  // the pass's program generation its content was drawn with; -1: none
+    long long drawn_at = 0;     // when it was last drawn, in draws_: a static reader drawn before is stale
     gl::Texture front, back;  // front: the latest finished output
     std::array<gl::Framebuffer, 6> front_fbo, back_fbo;
     glm::ivec2 size{0};
@@ -163,9 +164,11 @@ class FrameGraph {
   std::vector<fs::path> mipmapped_;  // the buffers some pass samples with mipmaps
   // Passes whose picture cannot change from frame to frame: they read no
   // clock, mouse or keyboard, not themselves, and only images and other
-  // such passes. Each is drawn again only after a reload, a resize or a
-  // restart; a static Cube A sky is drawn once.
+  // such passes. Each is drawn again only after a reload, a resize, a
+  // restart, or a draw of a pass it reads (one of another size, resized); a
+  // static Cube A sky is drawn once.
   std::vector<fs::path> static_;
+  long long draws_ = 0;  // the buffer passes drawn so far
   KeyboardState keyboard_;
   gl::Texture keyboard_texture_;
   gl::Texture black_[3];  // a transparent black texel per shape: flat, cube, volume

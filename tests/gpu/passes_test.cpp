@@ -398,6 +398,31 @@ TEST_F(Passes, APassWhosePictureCannotChangeIsDrawnOnce) {
   EXPECT_EQ(at(frame(4, {8, 8}), 2, 0)[0], 5.0f) << "a reload draws the new program";
 }
 
+// A static pass is drawn again when a pass it reads was drawn after it. A
+// pass that reads a later buffer is not static: it sees that buffer's first
+// picture at the second frame, as on Shadertoy. A buffer of a size of its
+// own follows a picture-sized buffer that a resize drew again.
+TEST_F(Passes, AStaticPassIsDrawnAgainWhenWhatItReadsWasDrawnAfterIt) {
+  write_file(dir_ / "buffer_a.frag", "#pragma channel0 \"buffer_b.frag\" filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(0), 0) + 1.0; }\n");
+  write_file(dir_ / "buffer_b.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(10.0); }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(0), 0); }\n");
+  load("image.frag");
+  EXPECT_EQ(at(frame(0), 0, 0)[0], 1.0f) << "B's previous frame: nothing yet";
+  EXPECT_EQ(at(frame(1), 0, 0)[0], 11.0f) << "B's first frame";
+  EXPECT_EQ(at(frame(2), 0, 0)[0], 11.0f);
+
+  write_file(dir_ / "buffer_c.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iResolution.x); }\n");
+  write_file(dir_ / "buffer_d.frag", "#pragma channel0 \"buffer_c.frag\" filter=nearest\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(0), 0); }\n");
+  write_file(dir_ / "sized.frag", "#pragma channel0 \"buffer_d.frag\" size=2x2 filter=nearest\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(0), 0); }\n");
+  load("sized.frag");
+  EXPECT_EQ(at(frame(0), 0, 0)[0], 4.0f);
+  EXPECT_EQ(at(frame(1, {8, 8}), 0, 0)[0], 8.0f) << "C drawn again at 8x8, and D, 2x2, after it";
+}
+
 TEST_F(Passes, RenderDrawsEveryFrameBeforeTheOneAskedFor) {
   write_file(dir_ / "buffer_a.frag", "#pragma channel0 self filter=nearest\n"
                                      "void mainImage(out vec4 c, in vec2 f) { c = texelFetch(iChannel0, ivec2(f), 0) + 1.0; }\n");
