@@ -282,13 +282,13 @@ bool FrameGraph::begin_pass(const Project& project, size_t index, glm::ivec2 pic
   if (buffer.size != size || buffer.cube != pass.cube) buffer.drawn_generation = -1;
   resize(buffer, size, pass.cube);
   const bool fixed = std::find(static_.begin(), static_.end(), pass.file) != static_.end();
+  if (!fixed || buffer.drawn_generation != pass.scene->generation()) return true;
   // A pass it reads drawn since (a buffer of another size, after a resize)
-  // makes its picture stale too.
-  const bool read_anew = std::any_of(pass.channels.begin(), pass.channels.end(), [&](const ChannelSpec& c) {
+  // makes its picture stale too; else its picture is still right.
+  return std::any_of(pass.channels.begin(), pass.channels.end(), [&](const ChannelSpec& c) {
     const auto read = buffers_.find(c.path);
     return c.kind == ChannelSpec::Kind::Pass && read != buffers_.end() && read->second.drawn_at > buffer.drawn_at;
   });
-  return !fixed || read_anew || buffer.drawn_generation != pass.scene->generation();  // else its picture is still right
 }
 
 void FrameGraph::draw_pass_region(const Project& project, size_t index, const FrameInputs& in, glm::ivec4 region) {
