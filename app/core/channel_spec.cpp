@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/lexing.h"
+#include "core/one_line.h"
 
 namespace rm {
 
@@ -25,7 +26,7 @@ bool read_setting(std::string_view word, ChannelSpec* spec, std::string* error) 
     int size = 0;
     for (char c : value) size = lexing::is_digit(c) && size <= 16384 ? size * 10 + (c - '0') : -1;
     if (value.empty() || size < 1 || size > 4096) {
-      *error = "size=N expects a face size from 1 to 4096, not '" + std::string(value) + "'";
+      *error = "size=N expects a face size from 1 to 4096, not '" + brief(value) + "'";
       return false;
     }
     spec->cube_size = size;
@@ -45,7 +46,7 @@ bool read_setting(std::string_view word, ChannelSpec* spec, std::string* error) 
   else if (key == "vflip" && value == "true") s->vflip = true;
   else if (key == "vflip" && value == "false") s->vflip = false;
   else {
-    *error = "unknown channel setting '" + std::string(word) +
+    *error = "unknown channel setting '" + brief(word) +
              "' (cube, volume, filter=nearest|linear|mipmap, wrap=clamp|repeat, vflip=true|false, size=N for a cube pass, size=WxH or scale=F for a buffer)";
     return false;
   }
@@ -67,15 +68,15 @@ std::optional<BufferSize> parse_buffer_size(std::string_view text, bool fixed, s
     const bool ok = ey == std::errc() && y == end && size.width >= 1 && size.height >= 1 &&
                     size.width <= BufferSize::kMaxSide && size.height <= BufferSize::kMaxSide;
     if (ok) return size;
-    *error = "WxH expects a width and a height from 1 to " + std::to_string(BufferSize::kMaxSide) + ", not '" +
-             std::string(text) + "'";
+    *error = "WxH expects a width and a height from 1 to " + std::to_string(BufferSize::kMaxSide) + ", not '" + brief(text) +
+             "'";
     return std::nullopt;
   }
   auto [last, ec] = std::from_chars(begin, end, size.scale);
   if (ec == std::errc() && last == end && !text.empty() && (lexing::is_digit(*begin) || *begin == '.') &&
       size.scale > 0 && size.scale <= 1)
     return size;
-  *error = "F expects a share of the picture's size above 0 and at most 1, not '" + std::string(text) + "'";
+  *error = "F expects a share of the picture's size above 0 and at most 1, not '" + brief(text) + "'";
   return std::nullopt;
 }
 

@@ -29,9 +29,4 @@ std::string short_json_error(const std::string& what) {
   return what.substr(0, head_end) + "..." + what.substr(tail_begin);
 }
 
-std::string brief(const std::string& text, size_t most) {
-  if (text.size() <= most) return text;
-  return text.substr(0, back_to_a_character(text, most, 0)) + "...";
-}
-
 }  // namespace rm

@@ -9,6 +9,7 @@
 #include "core/files.h"
 #include "core/json_depth.h"
 #include "core/json_errors.h"
+#include "core/one_line.h"
 
 namespace rm {
 

@@ -12,6 +12,7 @@
 #include "core/glslviewer_passes.h"
 #include "core/host_inputs.h"
 #include "core/lexing.h"
+#include "core/one_line.h"
 
 namespace rm {
 
@@ -756,7 +757,7 @@ class Preprocessor {
     error(at.file, at.line, static_cast<int>(i) + 1,
           "the size of '" + std::string(d.name) + "' after its declaration is WxH (each from 1 to " +
               std::to_string(BufferSize::kMaxSide) + ") or a share of the picture's (above 0, at most 1), not '" +
-              std::string(token) + "'");
+              brief(token) + "'");
     return {};
   }
 

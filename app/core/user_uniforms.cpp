@@ -8,6 +8,7 @@
 #include "core/check.h"
 #include "core/host_inputs.h"
 #include "core/lexing.h"
+#include "core/one_line.h"
 
 namespace rm {
 
@@ -78,13 +79,13 @@ void read_annotation(std::string_view text, UserUniform* u, Diagnostics* warning
     if (key == "default") {
       std::string why;
       if (auto v = parse_uniform_value(*u, value, &why)) u->initial = *v;
-      else warn("default=" + value + ": " + why);
+      else warn("default=" + brief(value) + ": " + why);
     } else if (key == "min" || key == "max" || key == "step") {
       auto v = number(value);
-      if (!v) warn(std::string(key) + "=" + value + " is not a number");
+      if (!v) warn(std::string(key) + "=" + brief(value) + " is not a number");
       else (key == "min" ? u->min : key == "max" ? u->max : u->step) = *v;
     } else {
-      warn("'" + std::string(word) + "' is not understood");
+      warn("'" + brief(word) + "' is not understood");
     }
   }
   if (u->min > u->max) {
@@ -116,19 +117,19 @@ std::optional<std::vector<float>> parse_uniform_value(const UserUniform& u, cons
     if (comma == std::string::npos) comma = text.size();
     auto v = number(std::string_view(text).substr(at, comma - at));
     if (!v) {
-      *error = "'" + text + "' is not " + (u.components == 1 ? "a number" : std::to_string(u.components) + " numbers");
+      *error = "'" + brief(text) + "' is not " + (u.components == 1 ? "a number" : std::to_string(u.components) + " numbers");
       return std::nullopt;
     }
     // An int's value as an int: past its range the cast is undefined.
     if (u.type == UserUniform::Type::Int && !(*v >= -2147483648.0f && *v < 2147483648.0f)) {
-      *error = "'" + std::string(std::string_view(text).substr(at, comma - at)) + "' is out of an int's range";
+      *error = "'" + brief(std::string_view(text).substr(at, comma - at)) + "' is out of an int's range";
       return std::nullopt;
     }
     out.push_back(u.type == UserUniform::Type::Int ? static_cast<float>(static_cast<int>(*v)) : *v);
     at = comma + 1;
   }
   if (static_cast<int>(out.size()) != u.components) {
-    *error = "'" + text + "' has " + std::to_string(out.size()) + " numbers; " + u.name + " takes " +
+    *error = "'" + brief(text) + "' has " + std::to_string(out.size()) + " numbers; " + u.name + " takes " +
              std::to_string(u.components);
     return std::nullopt;
   }

@@ -52,16 +52,5 @@ TEST(JsonErrors, ACutFallsBetweenCharactersNotInsideOne) {
   for (size_t i = 0; i < letters.size(); i += 2) EXPECT_EQ(letters.substr(i, 2), "\xc3\xa9") << i;
 }
 
-// A value a warning quotes: whole up to 40 bytes, else cut before a character, not inside one.
-TEST(JsonErrors, BriefCutsBetweenCharacters) {
-  EXPECT_EQ(brief(std::string(40, 'x')), std::string(40, 'x'));
-  EXPECT_EQ(brief(std::string(41, 'x')), std::string(40, 'x') + "...");
-  std::string letters = "x";
-  for (int i = 0; i < 30; ++i) letters += "\xc3\xa9";  // é, two bytes each: byte 40 is inside one
-  std::string kept = "x";
-  for (int i = 0; i < 19; ++i) kept += "\xc3\xa9";
-  EXPECT_EQ(brief(letters), kept + "...");
-}
-
 }  // namespace
 }  // namespace rm

@@ -16,5 +16,16 @@ TEST(OneLine, JoinsTheLinesThatSaySomethingNew) {
   EXPECT_EQ(one_line(""), "");
 }
 
+// A value a message quotes: whole up to 40 bytes, else cut before a character, not inside one.
+TEST(OneLine, BriefCutsBetweenCharacters) {
+  EXPECT_EQ(brief(std::string(40, 'x')), std::string(40, 'x'));
+  EXPECT_EQ(brief(std::string(41, 'x')), std::string(40, 'x') + "...");
+  std::string letters = "x";
+  for (int i = 0; i < 30; ++i) letters += "\xc3\xa9";  // é, two bytes each: byte 40 is inside one
+  std::string kept = "x";
+  for (int i = 0; i < 19; ++i) kept += "\xc3\xa9";
+  EXPECT_EQ(brief(letters), kept + "...");
+}
+
 }  // namespace
 }  // namespace rm

@@ -744,5 +744,31 @@ TEST(Source, ChannelPragmasNameBuffersSelfTheKeyboardAndSettings) {
   EXPECT_NE(bad.errors[0].message.find("unknown channel setting 'filter=fuzzy'"), std::string::npos) << bad.errors[0].message;
 }
 
+// A bad value 100,000 characters long gets a line an editor can show: what it
+// quotes is cut to 40 bytes and "...".
+TEST(Source, AnErrorQuotesALongBadValueBriefly) {
+  TempDir dir;
+  write_file(dir / "a.frag", kMain);
+  const std::string zeros(100000, '0');
+  for (const auto& [pragma, message] : std::vector<std::pair<std::string, std::string>>{
+           {"\"a.frag\" size=1x1" + zeros, "not '1x1" + std::string(37, '0') + "...'"},
+           {"\"a.frag\" scale=0." + zeros + "x", "not '0." + std::string(38, '0') + "...'"},
+           {"\"a.frag\" filter=" + zeros, "unknown channel setting 'filter=" + std::string(33, '0') + "...'"},
+       }) {
+    write_file(dir / "bad.frag", "#pragma channel0 " + pragma + "\n" + std::string(kMain));
+    const Source bad = preprocess(dir / "bad.frag", {});
+    ASSERT_EQ(bad.errors.size(), 1u);
+    EXPECT_NE(bad.errors[0].message.find(message), std::string::npos) << bad.errors[0].message.substr(0, 200);
+    EXPECT_LT(bad.errors[0].message.size(), 400u);
+  }
+  write_file(dir / "gv.frag", "uniform sampler2D u_buffer0; // 1x" + zeros + "\nvoid main() {\n"
+                              "  gl_FragColor = texture2D(u_buffer0, vec2(0.5));\n}\n");
+  const Source gv = preprocess(fs::absolute(dir / "gv.frag").lexically_normal(), {});
+  ASSERT_EQ(gv.errors.size(), 1u);
+  EXPECT_EQ(gv.errors[0].column, 33);
+  EXPECT_NE(gv.errors[0].message.find("not '1x" + std::string(38, '0') + "...'"), std::string::npos);
+  EXPECT_LT(gv.errors[0].message.size(), 400u);
+}
+
 }  // namespace
 }  // namespace rm

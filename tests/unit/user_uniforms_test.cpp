@@ -66,6 +66,18 @@ TEST(UserUniforms, ArraysAndBadAnnotationsAreWarningsNeverFailures) {
   for (const Diagnostic& w : u.warnings) EXPECT_EQ(w.severity, Severity::Warning);
 }
 
+TEST(UserUniforms, AWarningQuotesALongWordBriefly) {
+  const std::string x(100000, 'x');
+  const UserUniforms u = uniforms_of("uniform float a;  // ui: max=" + x + " " + x + " default=" + x + "\n");
+  ASSERT_EQ(u.warnings.size(), 3u) << join(u.warnings).substr(0, 300);
+  EXPECT_NE(u.warnings[0].message.find("max=" + std::string(40, 'x') + "... is not a number"), std::string::npos);
+  EXPECT_NE(u.warnings[1].message.find("'" + std::string(40, 'x') + "...' is not understood"), std::string::npos);
+  EXPECT_NE(u.warnings[2].message.find("default=" + std::string(40, 'x') + "...: '" + std::string(40, 'x') + "...'"),
+            std::string::npos)
+      << u.warnings[2].message.substr(0, 300);
+  for (const Diagnostic& w : u.warnings) EXPECT_LT(w.message.size(), 300u);
+}
+
 TEST(UserUniforms, OnlyTheActiveCodeCounts) {
   const UserUniforms u = uniforms_of("#ifdef NEVER\nuniform float hidden;\n#else\nuniform float shown;\n#endif\n"
                                      "// uniform float commented;\n");
