@@ -231,7 +231,7 @@ void FrameGraph::time_passes(bool on, bool finish) {
 }
 
 template <typename Draw>
-void FrameGraph::timed(const Project& project, size_t index, Draw draw) {
+void FrameGraph::timed(const Project& project, size_t index, glm::ivec2 size, Draw draw) {
   if (!timing_) {
     draw();
     return;
@@ -245,6 +245,7 @@ void FrameGraph::timed(const Project& project, size_t index, Draw draw) {
   glEndQuery(GL_TIME_ELAPSED);
   PassTime t;
   t.pass = project.passes()[index].file;
+  t.size = size;
   t.index = index;
   if (finish_) t.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   times_.push_back(t);
@@ -316,7 +317,7 @@ void FrameGraph::draw_pass_region(const Project& project, size_t index, const Fr
     if (!whole) glDisable(GL_SCISSOR_TEST);
   };
   // Timed only whole: one query per pass and frame.
-  if (whole) timed(project, index, draw);
+  if (whole) timed(project, index, size, draw);
   else draw();
 }
 
@@ -362,7 +363,7 @@ void FrameGraph::draw_image(const Project& project, const FrameInputs& in, glm::
     glEnable(GL_SCISSOR_TEST);
     glScissor(region.x, region.y, region.z, region.w);
   }
-  timed(project, image, [&] { renderer_.draw(*project.image_program(), in, inputs_of(project, image), size); });
+  timed(project, image, size, [&] { renderer_.draw(*project.image_program(), in, inputs_of(project, image), size); });
   if (part) glDisable(GL_SCISSOR_TEST);
 }
 
@@ -376,7 +377,7 @@ Image FrameGraph::render_frame(const Project& project, const FrameInputs& in, gl
                                const MotionBlur& motion) {
   draw_buffers(project, in, size);
   Image image;
-  timed(project, project.passes().size() - 1, [&] { image = render_image(project, in, size, samples, motion); });  // with the read-back
+  timed(project, project.passes().size() - 1, size, [&] { image = render_image(project, in, size, samples, motion); });  // with the read-back
   return image;
 }
 

@@ -81,6 +81,7 @@ class FrameGraph {
   // threads its queries do not see; the wall clock is the one to trust there).
   struct PassTime {
     fs::path pass;
+    glm::ivec2 size{0};  // of the target it drew: a cube's face, a buffer's own size, the picture's
     double gpu_ms = 0;
     double wall_ms = 0;  // 0 without `finish`
     size_t index = 0;    // in the project's draw order
@@ -145,9 +146,10 @@ class FrameGraph {
     glm::ivec2 size{0};
   };
   void resize(Buffer& buffer, glm::ivec2 size, bool cube) const;
-  // Runs `draw` (pass `index` of `project`), timed when timing is on.
+  // Runs `draw` (pass `index` of `project`, into a target of `size`), timed
+  // when timing is on.
   template <typename Draw>
-  void timed(const Project& project, size_t index, Draw draw);
+  void timed(const Project& project, size_t index, glm::ivec2 size, Draw draw);
   ChannelInputs inputs_of(const Project& project, size_t pass) const;
   GLuint sampler_for(const Sampler& s) const;
 

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/one_line.h"
 #include "window/ui.h"
 
 namespace rm {
@@ -28,18 +29,12 @@ std::optional<double> number(const std::string& text) {
   return v;
 }
 
-// At most kShownBytes of `text`, cut between two letters, with "…" after a
-// cut. Dear ImGui draws a text's letters into one list of 16-bit indices,
-// which a text of about 16,000 letters overflows (an assertion: a 30 KB
-// `// ui:` comment in a warning closed the window); stderr has the whole text.
+// At most kShownBytes of `text`, cut between two letters. Dear ImGui draws
+// a text's letters into one list of 16-bit indices, which a text of about
+// 16,000 letters overflows (an assertion: a 30 KB `#error` closed the
+// window); stderr has the whole text.
 constexpr size_t kShownBytes = 2000;
-std::string shown(std::string text) {
-  if (text.size() <= kShownBytes) return text;
-  size_t cut = kShownBytes;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a letter
-  text.resize(cut);
-  return text + "\u2026";
-}
+std::string shown(const std::string& text) { return brief(text, kShownBytes); }
 
 std::string knob_text(const Knob& knob, float value) {
   char buf[32];
@@ -84,20 +79,13 @@ void error_overlay(Ui& ui, const UiModel& model, UiChanges* changes) {
 
 void hud(const UiModel& model) {
   if (!model.hud) return;
-  const HudFigures& f = model.figures;
   ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_Always);
   ImGui::SetNextWindowSizeConstraints(ImVec2(340.0f, 0.0f), ImVec2(FLT_MAX, FLT_MAX));  // numbers change width
   ImGui::SetNextWindowBgAlpha(0.6f);
   // NoInputs: the HUD never takes a press from iMouse.
   ImGui::Begin("##hud", nullptr,
                kFixed | ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs);
-  ImGui::Text("CPU %.2f ms   GPU %.2f ms   %.1f fps", f.cpu_ms, f.gpu_ms, f.fps);
-  ImGui::Text("%d x %d   iTime %.2f   iFrame %d   %s", f.resolution.x, f.resolution.y, f.time, f.frame,
-              !f.animated ? "static" : f.paused ? "paused" : "running");
-  ImGui::Text("scale %.2f   %d %s   %d %s", f.scale, f.tiles, f.tiles == 1 ? "tile" : "tiles", f.samples,
-              f.samples == 1 ? "sample" : "samples");
-  if (f.passes.size() > 1)
-    for (const auto& [name, ms] : f.passes) ImGui::Text("  %-20s %6.2f ms", name.c_str(), ms);
+  for (const std::string& line : hud_lines(model.figures)) ImGui::TextUnformatted(line.c_str());
   ImGui::End();
 }
 
@@ -238,12 +226,34 @@ void controls(Ui& ui, UiModel& model, UiChanges* changes) {
   ImGui::End();
 }
 
+std::string formatted(const char* format, auto... values) {
+  char line[256];
+  std::snprintf(line, sizeof line, format, values...);
+  return line;
+}
+
 }  // namespace
+
+std::vector<std::string> hud_lines(const HudFigures& f) {
+  std::vector<std::string> lines{
+      formatted("CPU %.2f ms   GPU %.2f ms   %.1f fps", f.cpu_ms, f.gpu_ms, f.fps),
+      formatted("%d x %d   iTime %.2f   iFrame %d   %s", f.resolution.x, f.resolution.y, f.time, f.frame,
+                !f.animated ? "static" : f.paused ? "paused" : "running"),
+      formatted("scale %.2f   %d %s   %d %s", f.scale, f.tiles, f.tiles == 1 ? "tile" : "tiles", f.samples,
+                f.samples == 1 ? "sample" : "samples")};
+  if (f.passes.size() > 1)
+    for (const HudFigures::Pass& p : f.passes) {
+      std::string name = p.name;  // whole: a name may be longer than a line of snprintf's
+      if (name.size() < 20) name.resize(20, ' ');
+      lines.push_back("  " + name + formatted(" %11s %6.2f ms", formatted("%dx%d", p.size.x, p.size.y).c_str(), p.gpu_ms));
+    }
+  return lines;
+}
 
 void want_letters(Ui& ui, const UiModel& model) {
   for (const Diagnostics* list : {&model.errors, &model.warnings})
     for (const Diagnostic& d : *list) ui.want_letters(d.str());
-  for (const auto& [name, ms] : model.figures.passes) ui.want_letters(name);
+  for (const HudFigures::Pass& pass : model.figures.passes) ui.want_letters(pass.name);
 }
 
 UiChanges draw_panels(Ui& ui, UiModel& model) {

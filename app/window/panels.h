@@ -32,8 +32,16 @@ struct HudFigures {
   double scale = 1;       // the frame budget's, per axis
   int tiles = 1;          // the picture was drawn in this many tiles
   int samples = 0;        // supersamples of the picture at rest (--refine); 0: moving
-  std::vector<std::pair<std::string, double>> passes;  // name, GPU ms, in draw order
+  struct Pass {
+    std::string name;
+    glm::ivec2 size{0};  // of its target (a cube's face): a buffer may have a size of its own
+    double gpu_ms = 0;
+  };
+  std::vector<Pass> passes;  // in draw order
 };
+
+// The HUD's lines of text, as the window shows them.
+std::vector<std::string> hud_lines(const HudFigures& figures);
 
 struct KnobControl {
   KnobValue value;        // as the compiler sees it now

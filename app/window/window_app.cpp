@@ -1003,7 +1003,7 @@ class WindowApp {
     for (const FrameGraph::PassTime& t : graph_.pass_times()) {
       f.cpu_ms += t.wall_ms;
       f.gpu_ms += t.gpu_ms;
-      f.passes.emplace_back(t.pass.filename().string(), t.gpu_ms);
+      f.passes.push_back({t.pass.filename().string(), t.size, t.gpu_ms});
     }
     const auto now = std::chrono::steady_clock::now();
     presents_.push_back(now);

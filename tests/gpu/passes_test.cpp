@@ -8,6 +8,7 @@
 #include "core/capture.h"
 #include "core/frame_graph.h"
 #include "core/project.h"
+#include "window/panels.h"
 #include "egl_fixture.h"
 #include "support.h"
 
@@ -346,23 +347,44 @@ TEST_F(Passes, NewProgramsAreWarmedUpInTheOrderTheyAreDrawn) {
   for (size_t i = 0; i < 3; ++i) EXPECT_EQ(project.passes()[i].file.filename(), warmed[i]) << "drawn " << i;
 }
 
+// Each with the size it drew at, which the HUD shows beside its time: a
+// buffer's own size, a cube's face, the picture's.
 TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
   write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(iTime); }\n");
-  write_file(dir_ / "image.frag", kShowChannel0);
+  write_file(dir_ / "cube_a.frag", "void mainCubemap(out vec4 c, in vec2 f, in vec3 o, in vec3 d) { c = vec4(1.0); }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\" size=5x3\n"
+                                  "#pragma channel1 \"cube_a.frag\" cube size=16\n"
+                                  "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f) + texture(iChannel1, vec3(1.0)); }\n");
   load("image.frag");
   frame(0);
   EXPECT_TRUE(graph_.pass_times().empty()) << "off by default";
   graph_.time_passes(true, /*finish*/ true);
-  frame(1);
-  frame(2);
+  frame(1, {8, 6});
+  frame(2, {8, 6});
   const auto times = graph_.pass_times();
-  ASSERT_EQ(times.size(), 2u) << "one per pass, not per frame";
+  ASSERT_EQ(times.size(), 2u) << "one per pass, not per frame; the cube is static, drawn once";
   EXPECT_EQ(times[0].pass.filename(), "buffer_a.frag");
+  EXPECT_EQ(times[0].size, glm::ivec2(5, 3));
   EXPECT_EQ(times[1].pass.filename(), "image.frag");
+  EXPECT_EQ(times[1].size, glm::ivec2(8, 6));
   for (const auto& t : times) {
     EXPECT_GT(t.wall_ms, 0.0);
     EXPECT_GE(t.gpu_ms, 0.0);
   }
+  graph_.restart();  // the cube drawn again
+  frame(3, {8, 6});
+  const auto again = graph_.pass_times();
+  ASSERT_EQ(again.size(), 3u);
+  EXPECT_EQ(again[1].pass.filename(), "cube_a.frag");
+  EXPECT_EQ(again[1].size, glm::ivec2(16, 16)) << "a face";
+
+  HudFigures figures;
+  for (const auto& t : again) figures.passes.push_back({t.pass.filename().string(), t.size, 1.5});
+  const std::vector<std::string> lines = hud_lines(figures);
+  ASSERT_EQ(lines.size(), 6u);
+  EXPECT_EQ(lines[3], "  buffer_a.frag                5x3   1.50 ms");
+  EXPECT_EQ(lines[4], "  cube_a.frag                16x16   1.50 ms");
+  EXPECT_EQ(lines[5], "  image.frag                   8x6   1.50 ms");
 }
 
 // A buffer that reads no clock, mouse, keyboard or feedback draws the same
