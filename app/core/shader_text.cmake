@@ -5,7 +5,8 @@
 # Program; the fuzz targets never call it, but it links against libepoxy.
 # supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's
 # offset; and inputs.cpp: the table records iDate as `render --date` reads it.
-# tweak.cpp lifts a scene's numbers out of its text for the twin.
+# tweak.cpp lifts a scene's numbers out of its text for the twin; one_line.cpp
+# cuts what an error quotes from the text to a length a line can hold.
 # glslang itself runs in the worker, a program of its own
 # (RM_GLSLANG_WORKER_SOURCES): both lists build with the glslang_worker/
 # protocol.
@@ -28,6 +29,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/program.cpp
   ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tweak.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/one_line.cpp
 )
 set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/main.cpp
