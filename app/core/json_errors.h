@@ -8,7 +8,7 @@
 namespace rm {
 
 // `what` with its "last read: '...'" cut to its first and last few
-// characters around "..." (ASCII: the window's font has no ellipsis), at
+// characters around "..." (ASCII, as the rest of the message), at
 // UTF-8 character boundaries; unchanged when the token is short or not there.
 std::string short_json_error(const std::string& what);
 

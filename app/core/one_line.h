@@ -14,8 +14,8 @@ namespace rm {
 std::string one_line(const std::string& message);
 
 // `text` whole when it has at most `most` bytes, else its first `most` bytes
-// or fewer (at a UTF-8 character boundary) and "..." (ASCII: the window's
-// font has no ellipsis). For quoting a value the user wrote, which may be a
+// or fewer (at a UTF-8 character boundary) and "..." (ASCII, as the rest of
+// a message on stderr). For quoting a value the user wrote, which may be a
 // line of 100,000 characters.
 std::string brief(std::string_view text, size_t most = 40);
 
