@@ -1,5 +1,9 @@
 #include "core/json_errors.h"
 
+#include <string_view>
+
+#include "core/one_line.h"
+
 namespace rm {
 
 namespace {
@@ -7,12 +11,6 @@ namespace {
 constexpr size_t kKeptHead = 24, kKeptTail = 16;  // bytes, about; enough to find the place in an editor
 
 bool continues_a_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
-
-// `at`, or the nearest byte before it (not before `floor`) that starts a character.
-size_t back_to_a_character(const std::string& text, size_t at, size_t floor) {
-  while (at > floor && continues_a_character(text[at])) --at;
-  return at;
-}
 
 }  // namespace
 
@@ -23,10 +21,11 @@ std::string short_json_error(const std::string& what) {
   if (open == std::string::npos || close == std::string::npos) return what;
   const size_t begin = open + key.size();
   if (close < begin || close - begin <= kKeptHead + kKeptTail + 8) return what;  // a cut would save little
-  const size_t head_end = back_to_a_character(what, begin + kKeptHead, begin);
   size_t tail_begin = close - kKeptTail;
   while (tail_begin < close && continues_a_character(what[tail_begin])) ++tail_begin;
-  return what.substr(0, head_end) + "..." + what.substr(tail_begin);
+  // The token is longer than kKeptHead: brief() cuts it and adds the "...".
+  return what.substr(0, begin) + brief(std::string_view(what).substr(begin, close - begin), kKeptHead) +
+         what.substr(tail_begin);
 }
 
 }  // namespace rm
