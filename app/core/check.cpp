@@ -401,9 +401,36 @@ std::optional<std::string> active_code(const std::string& text) {
   return child.output.substr(1);
 }
 
+namespace {
+
+// Whether glslang's error `d`, at a line of the final text that the host
+// added (`in_host_code`) or not, follows from an error already in `out`.
+// glslang names every error it finds (glslang_worker), and some are an
+// earlier one's echo: the host's code fails once for whatever broke it,
+// and on a line that failed already, a later error is most often the
+// first one's (no such field, then a failed assignment; an undeclared
+// sampler, then no texture() that takes it). A second undeclared name on
+// that line is news of its own.
+bool follows_earlier_error(const Diagnostics& out, const Diagnostic& d, bool in_host_code,
+                           bool earlier_in_host_code) {
+  if (in_host_code) return earlier_in_host_code;
+  if (d.message.ends_with(" : undeclared identifier")) return false;
+  return std::any_of(out.begin(), out.end(), [&](const Diagnostic& e) {
+    return e.severity == Severity::Error && e.path == d.path && e.line == d.line;
+  });
+}
+
+}  // namespace
+
 Diagnostics map_log(const std::string& log, const Source& source, LogFormat format) {
   Diagnostics out;
   bool said_uniforms_past_limit = false;
+  // glslang read on past a cause the host found (a '{' or a declaration left
+  // open, then misread everything after it), or failed in the host's code.
+  bool said_left_open = false, said_host_code_error = false;
+  // glslang ends its input at an error when it runs as it does by default:
+  // what follows ("compilation terminated", a missing #endif) is its echo.
+  const bool stopped_at_error = log.find(": '' : compilation terminated") != std::string::npos;
   std::istringstream in(log);
   std::string text;
   while (std::getline(in, text)) {
@@ -433,14 +460,15 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
               out.back().message.rfind("'#extension' : ", 0) == 0 &&
               out.back().line == source.locate(*final_line).second)
             continue;
-          // glslang stops at its first error, inside a conditional if it was
-          // in one (or after #if nesting ran over): then of course an #endif
-          // is missing.
+          // glslang run by default stops at its first error, inside a
+          // conditional if it was in one (or after #if nesting ran over):
+          // then of course an #endif is missing.
           const bool missing_endif = message == "'' : missing #endif";
           const bool after_error = std::any_of(out.begin(), out.end(), [](const Diagnostic& d) {
             return d.severity == Severity::Error;
           });
-          if (missing_endif && after_error) continue;
+          if (missing_endif && after_error && stopped_at_error) continue;
+          if (said_left_open) continue;
           // What a file of the user's left open at its end (an #if, a '{',
           // a declaration) is named where it was, not where glslang noticed.
           const int col = given_column ? *given_column : column_in_line(message, source.final_line_text(*final_line));
@@ -454,9 +482,16 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           if (left_open) {
             out.push_back(
                 locate(source, *severity, left_open->final_line, left_open->column, plain_words(left_open->message)));
+            said_left_open = true;
             continue;
           }
-          out.push_back(locate(source, *severity, *final_line, col, plain_words(message)));
+          Diagnostic d = locate(source, *severity, *final_line, col, plain_words(message));
+          const bool in_host_code = source.locate(*final_line).first.empty();
+          if (*severity == Severity::Error) {
+            if (after_error && follows_earlier_error(out, d, in_host_code, said_host_code_error)) continue;
+            said_host_code_error = said_host_code_error || in_host_code;
+          }
+          out.push_back(std::move(d));
           continue;
         }
       }

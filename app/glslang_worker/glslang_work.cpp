@@ -36,20 +36,29 @@ std::optional<std::string> preprocessed(const std::string& text, glslang::TShade
   return expanded;
 }
 
+// How glslang goes on after an error. By default it ends its input there
+// ("compilation terminated"), so a shader with three mistakes took three
+// saves to show them all. Cascading, it reads on and names each, as a
+// compiler does (a syntax error still stops its parser). glslang warns
+// that its recovery may then crash: the parse runs in a sandboxed child,
+// and one that crashes is run again by default.
+enum class AfterError { GoOn, Stop };
+
 // glslang's parser and semantic checks over `text`, as every validation
 // runs them: no client API is set, so plain GLSL semantics, as the GL
 // driver applies them. Call on a big stack.
-bool parse(const std::string& text, glslang::TShader* shader) {
+bool parse(const std::string& text, glslang::TShader* shader, AfterError after_error) {
   const char* chars = text.c_str();
   const int length = static_cast<int>(text.size());
   shader->setStringsWithLengths(&chars, &length, 1);
-  return shader->parse(GetDefaultResources(), 100, false, EShMsgDefault);
+  return shader->parse(GetDefaultResources(), 100, false,
+                       after_error == AfterError::GoOn ? EShMsgCascadingErrors : EShMsgDefault);
 }
 
 // glslang's log of `text`. Call on a big stack.
-std::string parse_log(const std::string& text) {
+std::string parse_log(const std::string& text, AfterError after_error) {
   glslang::TShader shader(EShLangFragment);
-  parse(text, &shader);
+  parse(text, &shader, after_error);
   return shader.getInfoLog();
 }
 
@@ -104,7 +113,8 @@ std::vector<std::pair<size_t, size_t>> line_tokens(std::string_view line) {
 // The 1-based column, or 0 if no cut fails the same way, or if the search
 // would take over a second at `parse_seconds` a parse (a huge text: the
 // line is named all the same). Call on a big stack.
-int unexpected_token_column(const std::string& text, int line, const std::string& error, double parse_seconds) {
+int unexpected_token_column(const std::string& text, int line, const std::string& error, double parse_seconds,
+                            AfterError after_error) {
   size_t start = 0;
   for (int n = 1; n < line && start != std::string::npos; ++n) {
     start = text.find('\n', start);
@@ -116,7 +126,8 @@ int unexpected_token_column(const std::string& text, int line, const std::string
       line_tokens(std::string_view(text).substr(start, end == std::string::npos ? end : end - start));
   if (parse_seconds * std::ceil(std::log2(tokens.size() + 1.0)) > 1.0) return 0;
   auto fails_there = [&](size_t token) {
-    return parse_log(text.substr(0, start + tokens[token].second) + "\n").find(error) != std::string::npos;
+    return parse_log(text.substr(0, start + tokens[token].second) + "\n", after_error).find(error) !=
+           std::string::npos;
   };
   size_t low = 0, high = tokens.size();  // the culprit is the first token whose cut fails there
   while (low < high) {
@@ -131,7 +142,8 @@ int unexpected_token_column(const std::string& text, int line, const std::string
 // 0:12:7: '' :  syntax error, unexpected IDENTIFIER", as glslang places a
 // column where it prints one). Without one (the search was too slow), the
 // host finds the column by the token's spelling (core/glslang_words.h).
-std::string with_unexpected_column(std::string log, const std::string& text, double parse_seconds) {
+std::string with_unexpected_column(std::string log, const std::string& text, double parse_seconds,
+                                   AfterError after_error) {
   static const std::string kUnexpected = ": '' :  syntax error, unexpected ";
   const size_t found = log.find(kUnexpected);
   if (found == std::string::npos) return log;
@@ -142,7 +154,8 @@ std::string with_unexpected_column(std::string log, const std::string& text, dou
   const size_t number = head + 9;
   if (number >= found || log.find_first_not_of("0123456789", number) != found) return log;
   const int line = std::stoi(log.substr(number, found - number));
-  const int column = unexpected_token_column(text, line, log.substr(head, name_end - head), parse_seconds);
+  const int column =
+      unexpected_token_column(text, line, log.substr(head, name_end - head), parse_seconds, after_error);
   if (column > 0) log.insert(found, ":" + std::to_string(column));
   return log;
 }
@@ -150,21 +163,21 @@ std::string with_unexpected_column(std::string log, const std::string& text, dou
 // The verdict line ("DEPTH LINE CHAIN LINE", from check_tree), then
 // glslang's log and check_tree's; with `active_text`, then a NUL and its
 // preprocessed text (a NUL never comes out of the log).
-std::string parse_in_child(const std::string& source_text, const std::string* active_text) {
+std::string parse_in_child(const std::string& source_text, const std::string* active_text, AfterError after_error) {
   std::string verdict;
   // glslang's traversals recurse once per level of the tree, and a 30,000-term
   // sum (60 KB of text) overflows an 8 MiB stack.
   run_with_deep_stack([&] {
     glslang::TShader shader(EShLangFragment);
     const auto start = std::chrono::steady_clock::now();
-    const bool parsed = parse(source_text, &shader);
+    const bool parsed = parse(source_text, &shader, after_error);
     const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     glslang::TIntermediate* tree = parsed ? shader.getIntermediate() : nullptr;
     const TreeVerdict checked = check_tree(tree ? tree->getTreeRoot() : nullptr);
     verdict = std::to_string(checked.depth) + " " + std::to_string(checked.depth_line) + " " +
               std::to_string(checked.chain) + " " + std::to_string(checked.chain_line) + "\n" +
               (parsed ? std::string(shader.getInfoLog())
-                      : with_unexpected_column(shader.getInfoLog(), source_text, parse_seconds)) +
+                      : with_unexpected_column(shader.getInfoLog(), source_text, parse_seconds, after_error)) +
               checked.log;
     if (active_text) {
       glslang::TShader active(EShLangFragment);
@@ -182,7 +195,7 @@ void build_builtins_for(const std::string& version_line) {
   static std::set<std::string> built;
   if (version_line.empty() || !built.insert(version_line).second) return;
   glslang::TShader shader(EShLangFragment);
-  parse(version_line + "\nvoid main() {}\n", &shader);
+  parse(version_line + "\nvoid main() {}\n", &shader, AfterError::Stop);
 }
 
 }  // namespace
@@ -196,7 +209,9 @@ std::optional<GlslangReply> serve(const GlslangRequest& request, int requester) 
   if (request.kind == GlslangRequest::Kind::Validate) {
     build_builtins_for(request.version_line);
     const std::string* active = request.active_text ? &*request.active_text : nullptr;
-    child = run_sandboxed([&] { return parse_in_child(request.text, active); }, limits);
+    child = run_sandboxed([&] { return parse_in_child(request.text, active, AfterError::GoOn); }, limits);
+    if (child.status == SandboxResult::Status::Crashed)
+      child = run_sandboxed([&] { return parse_in_child(request.text, active, AfterError::Stop); }, limits);
   } else {
     child = run_sandboxed(
         [&] {

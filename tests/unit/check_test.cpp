@@ -23,8 +23,8 @@ TEST(Check, ErrorInAnIncludedFileNamesThatFileAndLine) {
   EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() + ":4:10: error: 'undefined_name' : undeclared identifier");
 }
 
-// glslang stops at the first error, and inside a conditional (an include
-// guard) it then says an #endif is missing: it is not, and is not shown.
+// An error inside a conditional (an include guard) is the only error: no
+// "missing #endif", which glslang says when it stops at an error there.
 TEST(Check, ErrorInsideAnIncludeGuardIsTheOnlyError) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
@@ -492,11 +492,71 @@ TEST(Check, ATypeErrorNamesTheTypesAsGlslDoes) {
   test::write_file(dir / "scene.frag",
                    "void mainImage(out vec4 c, in vec2 f) {\n  vec3 a = vec3(1.0); c = a * mat2(1.0);\n}\n");
   check_scene(dir / "scene.frag", {}, &diags);
+  // glslang goes on with the left operand's vec3, and its '=' then fails
+  // too: the same line's echo, not shown (AnErrorsEchoOnItsLineIsNotShown).
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
                              ":2:29: error: '*' : wrong operand types: no operation '*' exists that takes a left-hand "
                              "operand of type 'vec3' and a right operand of type 'const mat2' (or there is no "
-                             "acceptable conversion)\n" +
-                             (dir / "scene.frag").string() + ":2: error: '=' : cannot convert from 'vec3' to 'out vec4'\n");
+                             "acceptable conversion)\n");
+}
+
+// Every error is named, as a compiler names them, not only the first (which
+// glslang does by default: a shader with three mistakes took three saves).
+TEST(Check, EveryErrorIsNamedNotOnlyTheFirst) {
+  test::TempDir dir;
+  test::write_file(dir / "lib.glsl", "float g() {\n  return radius;\n}\n");
+  test::write_file(dir / "scene.frag",
+                   "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {\n  float a = foo;\n"
+                   "  vec3 v = vec2(a);\n  int i = 1.5;\n  c = vec4(v, g());\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  const std::string scene = (dir / "scene.frag").string();
+  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() + ":2:10: error: 'radius' : undeclared identifier\n" + scene +
+                             ":3:13: error: 'foo' : undeclared identifier\n" + scene +
+                             ":4:10: error: '=' : cannot convert from 'vec2' to 'vec3'\n" + scene +
+                             ":5:9: error: '=' : cannot convert from 'const float' to 'int'\n");
+}
+
+// An error that follows from one before it on its line is not shown: a
+// field the struct lacks, then the assignment to it; an undeclared sampler,
+// then no texture() that takes it. A second undeclared name is news.
+TEST(Check, AnErrorsEchoOnItsLineIsNotShown) {
+  test::TempDir dir;
+  test::write_file(dir / "scene.frag",
+                   "struct S { float x; };\nvoid mainImage(out vec4 c, in vec2 f) {\n  S s; s.y = 1.0;\n"
+                   "  c = texture(noSampler, f);\n  float a = foo + bar;\n  c = vec4(a);\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  const std::string scene = (dir / "scene.frag").string();
+  EXPECT_EQ(join(diags), scene + ":3:10: error: 'y' : no such field in structure 's'\n" + scene +
+                             ":4:15: error: 'noSampler' : undeclared identifier\n" + scene +
+                             ":5:13: error: 'foo' : undeclared identifier\n" + scene +
+                             ":5:19: error: 'bar' : undeclared identifier\n");
+}
+
+// An #if really left open after an error is still named where it opens.
+TEST(Check, AConditionalLeftOpenAfterAnErrorIsNamed) {
+  test::TempDir dir;
+  test::write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) {\n#if 1\n  c = vec4(foo);\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  const std::string scene = (dir / "scene.frag").string();
+  EXPECT_EQ(join(diags),
+            scene + ":3:12: error: 'foo' : undeclared identifier\n" + scene + ":2:1: error: unterminated #if\n");
+}
+
+// Going on past an error, glslang 11 crashes on an empty initializer list
+// (fixed upstream in 2026, KhronosGroup/glslang#4385). The worker then
+// parses again as glslang does by default, and its first error is named.
+TEST(Check, WhereGlslangsRecoveryCrashesItsFirstErrorIsNamed) {
+  test::TempDir dir;
+  test::write_file(dir / "scene.frag",
+                   "struct S { float x; };\nconst S s = {};\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(s.x); }\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
+                             ":2: error: 'empty { } initializer' : not supported for this version or the enabled "
+                             "extensions\n");
 }
 
 }  // namespace
