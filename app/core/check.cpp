@@ -404,20 +404,18 @@ std::optional<std::string> active_code(const std::string& text) {
 namespace {
 
 // Whether glslang's error `d`, at a line of the final text that the host
-// added (`in_host_code`) or not, follows from an error already in `out`.
-// glslang names every error it finds (glslang_worker), and some are an
-// earlier one's echo: the host's code fails once for whatever broke it,
-// and on a line that failed already, a later error is most often the
-// first one's (no such field, then a failed assignment; an undeclared
-// sampler, then no texture() that takes it). A second undeclared name on
-// that line is news of its own.
-bool follows_earlier_error(const Diagnostics& out, const Diagnostic& d, bool in_host_code,
+// added (`in_host_code`) or not, follows from the error before it, `last`.
+// glslang names every error it finds (glslang_worker), in the order of the
+// text, and some are an earlier one's echo: the host's code fails once for
+// whatever broke it, and on a line that failed already, a later error is
+// most often the first one's (no such field, then a failed assignment; an
+// undeclared sampler, then no texture() that takes it). A second undeclared
+// name on that line is news of its own.
+bool follows_earlier_error(const Diagnostic& last, const Diagnostic& d, bool in_host_code,
                            bool earlier_in_host_code) {
   if (in_host_code) return earlier_in_host_code;
   if (d.message.ends_with(" : undeclared identifier")) return false;
-  return std::any_of(out.begin(), out.end(), [&](const Diagnostic& e) {
-    return e.severity == Severity::Error && e.path == d.path && e.line == d.line;
-  });
+  return last.line == d.line && last.path == d.path;
 }
 
 }  // namespace
@@ -428,6 +426,9 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
   // glslang read on past a cause the host found (a '{' or a declaration left
   // open, then misread everything after it), or failed in the host's code.
   bool said_left_open = false, said_host_code_error = false;
+  std::optional<size_t> last_error;  // in out
+  constexpr int kMostErrorsNamed = 20;
+  int errors_named = 0;
   // glslang ends its input at an error when it runs as it does by default:
   // what follows ("compilation terminated", a missing #endif) is its echo.
   const bool stopped_at_error = log.find(": '' : compilation terminated") != std::string::npos;
@@ -464,9 +465,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           // conditional if it was in one (or after #if nesting ran over):
           // then of course an #endif is missing.
           const bool missing_endif = message == "'' : missing #endif";
-          const bool after_error = std::any_of(out.begin(), out.end(), [](const Diagnostic& d) {
-            return d.severity == Severity::Error;
-          });
+          const bool after_error = last_error.has_value();
           if (missing_endif && after_error && stopped_at_error) continue;
           if (said_left_open) continue;
           // What a file of the user's left open at its end (an #if, a '{',
@@ -483,13 +482,24 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
             out.push_back(
                 locate(source, *severity, left_open->final_line, left_open->column, plain_words(left_open->message)));
             said_left_open = true;
+            last_error = out.size() - 1;
             continue;
           }
           Diagnostic d = locate(source, *severity, *final_line, col, plain_words(message));
           const bool in_host_code = source.locate(*final_line).first.empty();
           if (*severity == Severity::Error) {
-            if (after_error && follows_earlier_error(out, d, in_host_code, said_host_code_error)) continue;
+            if (after_error && follows_earlier_error(out[*last_error], d, in_host_code, said_host_code_error)) continue;
+            // As clang does: past a screenful, the first error would scroll
+            // out of sight, and it is the one to fix first.
+            if (++errors_named > kMostErrorsNamed) {
+              Diagnostic too_many;
+              too_many.path = source.files.empty() ? std::string() : source.files.front().string();
+              too_many.message = "too many errors; only the first " + std::to_string(kMostErrorsNamed) + " are named";
+              out.push_back(std::move(too_many));
+              break;
+            }
             said_host_code_error = said_host_code_error || in_host_code;
+            last_error = out.size();
           }
           out.push_back(std::move(d));
           continue;

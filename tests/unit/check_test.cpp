@@ -517,6 +517,20 @@ TEST(Check, EveryErrorIsNamedNotOnlyTheFirst) {
                              ":5:9: error: '=' : cannot convert from 'const float' to 'int'\n");
 }
 
+// Past 20 errors the rest are not named, as clang does: the first error
+// stays in sight.
+TEST(Check, PastTwentyErrorsTheRestAreNotNamed) {
+  test::TempDir dir;
+  std::string code = "void mainImage(out vec4 c, in vec2 f) {\n  float a = 0.0;\n";
+  for (int i = 0; i < 25; ++i) code += "  a += u" + std::to_string(i) + ";\n";
+  test::write_file(dir / "scene.frag", code + "  c = vec4(a);\n}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_EQ(diags.size(), 21u);
+  EXPECT_EQ(diags[19].str(), (dir / "scene.frag").string() + ":22:8: error: 'u19' : undeclared identifier");
+  EXPECT_EQ(diags[20].str(), (dir / "scene.frag").string() + ": error: too many errors; only the first 20 are named");
+}
+
 // An error that follows from one before it on its line is not shown: a
 // field the struct lacks, then the assignment to it; an undeclared sampler,
 // then no texture() that takes it. A second undeclared name is news.
