@@ -1,6 +1,7 @@
 #include "core/source.h"
 
 #include <algorithm>
+#include <climits>
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
@@ -26,6 +27,10 @@ std::optional<std::string> define_problem(const Define& d) {
 namespace {
 
 constexpr int kMaxIncludeDepth = 256;
+
+// A file name the code gave, as an error quotes it: whole, unless it is
+// longer than any path can be (PATH_MAX), which only nonsense is.
+std::string quoted_path(std::string_view name) { return brief(name, PATH_MAX); }
 
 // The Shadertoy prelude: the host inputs (core/host_inputs.h), then each
 // channel as what it is bound to.
@@ -463,8 +468,9 @@ class Preprocessor {
             if (face != spec->path) out_.watch.push_back(face);
         if (!fs_.exists(spec->path)) {
           const char* what = spec->kind == ChannelSpec::Kind::Pass ? "buffer pass" : "channel image";
-          error(file, line_no, pragma->column, std::string("cannot find ") + what + " '" +
-                                                   spec->path.lexically_relative(path.parent_path()).string() + "'");
+          error(file, line_no, pragma->column,
+                std::string("cannot find ") + what + " '" +
+                    quoted_path(spec->path.lexically_relative(path.parent_path()).string()) + "'");
           return false;
         }
       }
@@ -495,7 +501,7 @@ class Preprocessor {
     auto target = resolve(inc, path.parent_path(), &first_candidate);
     if (!target) {
       if (!first_candidate.empty()) out_.watch.push_back(first_candidate);
-      error(file, line_no, inc.column, "cannot find include '" + inc.target + "'");
+      error(file, line_no, inc.column, "cannot find include '" + quoted_path(inc.target) + "'");
       return false;
     }
     auto existing = file_index_.find(target->string());

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <climits>
 
 #include "core/files.h"
 #include "core/glslviewer_passes.h"
@@ -768,6 +769,25 @@ TEST(Source, AnErrorQuotesALongBadValueBriefly) {
   EXPECT_EQ(gv.errors[0].column, 33);
   EXPECT_NE(gv.errors[0].message.find("not '1x" + std::string(38, '0') + "...'"), std::string::npos);
   EXPECT_LT(gv.errors[0].message.size(), 400u);
+}
+
+// A file that is not there is named whole, however deep its path; a name
+// longer than any path can be (PATH_MAX) is cut.
+TEST(Source, AMissingFilesNameIsQuotedWholeUpToPathMax) {
+  TempDir dir;
+  const std::string deep = "a/b/c/d/e/f/g/h/i/j/k/l/m/n/o/p/q/r/s/t/u/v/w/x/y/z/missing.png";
+  const std::string endless(100000, 'b');
+  for (const auto& [line, message] : std::vector<std::pair<std::string, std::string>>{
+           {"#pragma channel0 \"" + deep + "\"", "cannot find channel image '" + deep + "'"},
+           {"#include \"" + deep + "\"", "cannot find include '" + deep + "'"},
+           {"#pragma channel0 \"" + endless + "\"", "cannot find channel image '" + endless.substr(0, PATH_MAX) + "...'"},
+           {"#include \"" + endless + "\"", "cannot find include '" + endless.substr(0, PATH_MAX) + "...'"},
+       }) {
+    write_file(dir / "bad.frag", line + "\n" + std::string(kMain));
+    const Source bad = preprocess(dir / "bad.frag", {});
+    ASSERT_EQ(bad.errors.size(), 1u);
+    EXPECT_EQ(bad.errors[0].message, message);
+  }
 }
 
 }  // namespace
