@@ -13,6 +13,14 @@ namespace {
 using test::TempDir;
 using test::write_file;
 
+// The diagnostics of `dir`/scene.frag saved with `text`, one per line.
+std::string diagnostics_of_scene(const TempDir& dir, const std::string& text) {
+  write_file(dir / "scene.frag", text);
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  return join(diags);
+}
+
 TEST(Check, ErrorInAnIncludedFileNamesThatFileAndLine) {
   TempDir dir;
   write_file(dir / "scene.frag", "// scene\n#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n");
@@ -503,15 +511,12 @@ TEST(Check, ATypeErrorNamesTheTypesAsGlslDoes) {
 // Every error is named, as a compiler names them, not only the first (which
 // glslang does by default: a shader with three mistakes took three saves).
 TEST(Check, EveryErrorIsNamedNotOnlyTheFirst) {
-  test::TempDir dir;
-  test::write_file(dir / "lib.glsl", "float g() {\n  return radius;\n}\n");
-  test::write_file(dir / "scene.frag",
-                   "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {\n  float a = foo;\n"
-                   "  vec3 v = vec2(a);\n  int i = 1.5;\n  c = vec4(v, g());\n}\n");
-  Diagnostics diags;
-  check_scene(dir / "scene.frag", {}, &diags);
+  TempDir dir;
+  write_file(dir / "lib.glsl", "float g() {\n  return radius;\n}\n");
   const std::string scene = (dir / "scene.frag").string();
-  EXPECT_EQ(join(diags), (dir / "lib.glsl").string() + ":2:10: error: 'radius' : undeclared identifier\n" + scene +
+  EXPECT_EQ(diagnostics_of_scene(dir, "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {\n"
+                                      "  float a = foo;\n  vec3 v = vec2(a);\n  int i = 1.5;\n  c = vec4(v, g());\n}\n"),
+            (dir / "lib.glsl").string() + ":2:10: error: 'radius' : undeclared identifier\n" + scene +
                              ":3:13: error: 'foo' : undeclared identifier\n" + scene +
                              ":4:10: error: '=' : cannot convert from 'vec2' to 'vec3'\n" + scene +
                              ":5:9: error: '=' : cannot convert from 'const float' to 'int'\n");
@@ -536,13 +541,11 @@ TEST(Check, PastTwentyErrorsTheRestAreNotNamed) {
 // then no texture() that takes it. A second undeclared name is news.
 TEST(Check, AnErrorsEchoOnItsLineIsNotShown) {
   test::TempDir dir;
-  test::write_file(dir / "scene.frag",
-                   "struct S { float x; };\nvoid mainImage(out vec4 c, in vec2 f) {\n  S s; s.y = 1.0;\n"
-                   "  c = texture(noSampler, f);\n  float a = foo + bar;\n  c = vec4(a);\n}\n");
-  Diagnostics diags;
-  check_scene(dir / "scene.frag", {}, &diags);
   const std::string scene = (dir / "scene.frag").string();
-  EXPECT_EQ(join(diags), scene + ":3:10: error: 'y' : no such field in structure 's'\n" + scene +
+  EXPECT_EQ(diagnostics_of_scene(dir, "struct S { float x; };\nvoid mainImage(out vec4 c, in vec2 f) {\n"
+                                      "  S s; s.y = 1.0;\n  c = texture(noSampler, f);\n  float a = foo + bar;\n"
+                                      "  c = vec4(a);\n}\n"),
+            scene + ":3:10: error: 'y' : no such field in structure 's'\n" + scene +
                              ":4:15: error: 'noSampler' : undeclared identifier\n" + scene +
                              ":5:13: error: 'foo' : undeclared identifier\n" + scene +
                              ":5:19: error: 'bar' : undeclared identifier\n");
@@ -551,11 +554,8 @@ TEST(Check, AnErrorsEchoOnItsLineIsNotShown) {
 // An #if really left open after an error is still named where it opens.
 TEST(Check, AConditionalLeftOpenAfterAnErrorIsNamed) {
   test::TempDir dir;
-  test::write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) {\n#if 1\n  c = vec4(foo);\n}\n");
-  Diagnostics diags;
-  check_scene(dir / "scene.frag", {}, &diags);
   const std::string scene = (dir / "scene.frag").string();
-  EXPECT_EQ(join(diags),
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n#if 1\n  c = vec4(foo);\n}\n"),
             scene + ":3:12: error: 'foo' : undeclared identifier\n" + scene + ":2:1: error: unterminated #if\n");
 }
 
@@ -564,11 +564,9 @@ TEST(Check, AConditionalLeftOpenAfterAnErrorIsNamed) {
 // parses again as glslang does by default, and its first error is named.
 TEST(Check, WhereGlslangsRecoveryCrashesItsFirstErrorIsNamed) {
   test::TempDir dir;
-  test::write_file(dir / "scene.frag",
-                   "struct S { float x; };\nconst S s = {};\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(s.x); }\n");
-  Diagnostics diags;
-  check_scene(dir / "scene.frag", {}, &diags);
-  EXPECT_EQ(join(diags), (dir / "scene.frag").string() +
+  EXPECT_EQ(diagnostics_of_scene(
+                dir, "struct S { float x; };\nconst S s = {};\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(s.x); }\n"),
+            (dir / "scene.frag").string() +
                              ":2: error: 'empty { } initializer' : not supported for this version or the enabled "
                              "extensions\n");
 }
