@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/one_line.h"
+
 namespace rm {
 
 namespace {
@@ -29,7 +31,7 @@ std::string printable(std::string_view text) {
     if (c >= 0x80) {
       const int more = continuation_bytes(c);
       bool whole = more > 0 && i + static_cast<size_t>(more) < text.size();
-      for (int k = 1; whole && k <= more; ++k) whole = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+      for (int k = 1; whole && k <= more; ++k) whole = continues_a_character(text[i + k]);
       if (whole) {
         out.append(text.substr(i, static_cast<size_t>(more) + 1));
         i += static_cast<size_t>(more);

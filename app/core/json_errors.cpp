@@ -10,8 +10,6 @@ namespace {
 
 constexpr size_t kKeptHead = 24, kKeptTail = 16;  // bytes, about; enough to find the place in an editor
 
-bool continues_a_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
-
 }  // namespace
 
 std::string short_json_error(const std::string& what) {

@@ -23,7 +23,7 @@ std::string one_line(const std::string& message) {
 std::string brief(std::string_view text, size_t most) {
   if (text.size() <= most) return std::string(text);
   size_t cut = most;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a character
+  while (cut > 0 && continues_a_character(text[cut])) --cut;
   return std::string(text.substr(0, cut)) + "...";
 }
 

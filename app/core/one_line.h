@@ -13,6 +13,10 @@ namespace rm {
 // The lines that say something the others do not, joined with "; ".
 std::string one_line(const std::string& message);
 
+// Whether `c` continues a UTF-8 character rather than starting one: a cut
+// of the user's text falls before such a byte, never at it.
+inline bool continues_a_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
 // `text` whole when it has at most `most` bytes, else its first `most` bytes
 // or fewer (at a UTF-8 character boundary) and "..." (ASCII, as the rest of
 // a message on stderr). For quoting a value the user wrote, which may be a
