@@ -111,6 +111,16 @@ TEST_F(Pathological, LongRunsOfBlanksNewlinesAndComments) {
   run_table(cases);
 }
 
+// glslang goes on past an error to name the next, parsing the rest: after
+// an error in 10 MB of statements it ran out of its 512 MiB. A text this
+// large is parsed to its first error, which is named.
+TEST_F(Pathological, TenMegabytesOfErrorsNameTheFirst) {
+  std::string scene = "void mainImage(out vec4 c, in vec2 f) {\n";
+  while (scene.size() < kTenMB) scene += "  u;\n";
+  write_file(dir_ / "errors.frag", scene + "}\n");
+  run_table({{path("errors.frag"), 1, "errors.frag:2:3: error: 'u' : undeclared identifier"}});
+}
+
 TEST_F(Pathological, DeepNestsAndLongMacroChains) {
   const std::string open(100000, '('), close(100000, ')');
   write_file(dir_ / "parens.frag", "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(" + open + "1.0" + close + ");\n}\n");
