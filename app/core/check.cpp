@@ -18,11 +18,6 @@ namespace rm {
 
 namespace {
 
-// The scene's file: where a message with no line of the user's is said.
-std::string scene_path(const Source& source) {
-  return source.files.empty() ? std::string() : source.files.front().string();
-}
-
 // A log line read from left to right. Compiler logs quote the user's code,
 // which can be any length, so they are read by hand rather than by std::regex
 // (whose matcher recurses once per character).
@@ -251,7 +246,7 @@ Diagnostic locate(const Source& source, Severity severity, int final_line, int c
       d.message = cause->message;
       return d;
     }
-    d.path = scene_path(source);
+    d.path = source.scene_path();
     d.message = "in the code the host adds around the scene: " + message;
   } else {
     d.path = path;
@@ -278,7 +273,7 @@ std::string likely_cause(const Source& source) {
 // What went wrong when glslang gave no verdict, said at the scene's file.
 Diagnostic no_verdict(const Source& source, const GlslangReply& reply) {
   Diagnostic d;
-  d.path = scene_path(source);
+  d.path = source.scene_path();
   switch (reply.status) {
     case GlslangReply::Status::TimedOut:
       d.message = "glslang took more than " + std::to_string(static_cast<int>(kValidationSeconds)) +
@@ -497,7 +492,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
             // As clang does: past a screenful, the first error would scroll
             // out of sight, and it is the one to fix first.
             if (++errors_named > kMostErrorsNamed) {
-              out.push_back({Severity::Error, scene_path(source), 0, 0,
+              out.push_back({Severity::Error, source.scene_path(), 0, 0,
                              "too many errors; only the first " + std::to_string(kMostErrorsNamed) + " are named"});
               break;
             }
@@ -523,7 +518,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     // Anything else (link errors, unknown formats) is kept, attributed to the scene.
     // Mesa's link errors carry no line: "error: unresolved reference to function `f'".
     Diagnostic d;
-    d.path = scene_path(source);
+    d.path = source.scene_path();
     LogLine line(text);
     if (const auto severity = line.severity("error: ", "warning: ")) d.severity = *severity;
     d.message = line.rest();

@@ -112,12 +112,12 @@ std::optional<Program> Program::build(const Source& source, Diagnostics* diags) 
   gl::Shader fragment = compile(GL_FRAGMENT_SHADER, source.text, &log);
   if (!fragment) {
     *diags = map_log(log, source, LogFormat::Mesa);
-    if (count_errors(*diags) == 0) diags->push_back({Severity::Error, source.files.front().string(), 0, 0, "the driver rejected the shader"});
+    if (count_errors(*diags) == 0) diags->push_back({Severity::Error, source.scene_path(), 0, 0, "the driver rejected the shader"});
     return std::nullopt;
   }
   gl::Shader vertex = compile(GL_VERTEX_SHADER, vertex_source(source.version_line), &log);
   if (!vertex) {
-    diags->push_back({Severity::Error, source.files.front().string(), 0, 0,
+    diags->push_back({Severity::Error, source.scene_path(), 0, 0,
                       "the host's vertex shader failed for '" + source.version_line + "': " + log});
     return std::nullopt;
   }
@@ -132,7 +132,7 @@ std::optional<Program> Program::build(const Source& source, Diagnostics* diags) 
   glGetProgramiv(p.id(), GL_LINK_STATUS, &ok);
   if (!ok) {
     *diags = map_log(info_log(p.id(), true), source, LogFormat::Mesa);
-    if (count_errors(*diags) == 0) diags->push_back({Severity::Error, source.files.front().string(), 0, 0, "the driver could not link the shader"});
+    if (count_errors(*diags) == 0) diags->push_back({Severity::Error, source.scene_path(), 0, 0, "the driver could not link the shader"});
     return std::nullopt;
   }
 

@@ -107,6 +107,9 @@ struct Source {
   std::pair<std::string, int> locate(int final_line) const;
   // The final source's line (1-based), or "" when out of range.
   std::string final_line_text(int final_line) const;
+
+  // The scene's file: where a message with no line of the user's is said.
+  std::string scene_path() const { return files.empty() ? std::string() : files.front().string(); }
 };
 
 Source preprocess(const fs::path& scene, const SourceOptions& options,
