@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -69,10 +70,57 @@ std::optional<size_t> sole_assignment(std::string_view line) {
   return found;
 }
 
+// Where `line` has its only word among `words`, or its only `mark`
+// character besides them; nullopt where it has none or several.
+std::optional<size_t> sole_place(std::string_view line, std::initializer_list<std::string_view> words, char mark = 0) {
+  std::optional<size_t> found;
+  int count = 0;
+  lexing::any_word(line, [&](size_t begin, size_t end) {
+    for (std::string_view word : words)
+      if (line.substr(begin, end - begin) == word) found = begin, ++count;
+    return count > 1;
+  });
+  for (size_t i = 0; mark && i < line.size(); ++i)
+    if (line[i] == mark) found = i, ++count;
+  return count == 1 ? found : std::nullopt;
+}
+
+// Where `line` calls its only constructor of a scalar, vector or matrix
+// type (`vec2(`); nullopt where it has none or several.
+std::optional<size_t> sole_constructor(std::string_view line) {
+  std::optional<size_t> found;
+  int count = 0;
+  lexing::any_word(line, [&](size_t begin, size_t end) {
+    const size_t after = lexing::skip_blanks(line, end);
+    if (after < line.size() && line[after] == '(' && lexing::components_of(line.substr(begin, end - begin)))
+      found = begin, ++count;
+    return count > 1;
+  });
+  return count == 1 ? found : std::nullopt;
+}
+
+// The column of what a message that quotes no token is about, where the
+// line leaves no doubt: a stray break or continue, the function that
+// returns no value, the condition that is no bool (glslang puts it at the
+// `if`, `while` or `?`), a constructor's arguments.
+std::optional<size_t> unquoted_subject(std::string_view message, std::string_view line) {
+  constexpr std::string_view kNoValue = "function does not return a value: ";
+  if (message.starts_with("'' : ")) message.remove_prefix(5);  // glslang's empty token
+  while (!message.empty() && lexing::is_blank(message.back())) message.remove_suffix(1);
+  if (message.starts_with("break statement")) return lexing::find_word(line, "break");
+  if (message.starts_with("continue statement")) return lexing::find_word(line, "continue");
+  if (message.starts_with(kNoValue)) return lexing::find_word(line, message.substr(kNoValue.size()));
+  if (message == "boolean expression expected") return sole_place(line, {"if", "while"}, '?');
+  if (message.starts_with("'constructor' : ")) return sole_constructor(line);
+  return std::nullopt;
+}
+
 // glslang names no column (the worker adds one for an unexpected token
 // where its search is quick enough). Where the message quotes a token, or
 // names the unexpected one, find that token's first spelling on the line.
 int column_in_line(const std::string& message, const std::string& line_text) {
+  if (const auto subject = unquoted_subject(message, lexing::strip_comments(line_text)))
+    return static_cast<int>(*subject) + 1;
   std::string needle;
   const size_t unexpected = message.find("unexpected ");
   if (unexpected != std::string::npos) {

@@ -129,6 +129,34 @@ TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
                              ":1:55: error: syntax error, unexpected 'return', expecting ',' or ';'\n");
 }
 
+// glslang quotes no token for some errors; the column is that of what the
+// message is about where the line leaves no doubt, in an include too, and
+// left out where it does not (two constructors on one line).
+TEST(Check, ErrorsThatQuoteNoTokenGetTheColumnOfTheirSubject) {
+  TempDir dir;
+  write_file(dir / "lib.glsl", "float g(float x) {\n  x += 1.0; // no return\n}\n");
+  const std::string scene = (dir / "scene.frag").string(), lib = (dir / "lib.glsl").string();
+  EXPECT_EQ(diagnostics_of_scene(dir, "#include \"lib.glsl\"\n"
+                                      "void mainImage(out vec4 c, in vec2 f) { c = vec4(g(1.0)); }\n"),
+            lib + ":1:7: error: function does not return a value: g\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n  break;\n}\n"),
+            scene + ":3:3: error: break statement only allowed in switch and loops\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0); continue;\n}\n"),
+            scene + ":2:18: error: continue statement only allowed in loops\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n"
+                                      "  /* if ( */ if (c.x) c.y = 0.0;\n}\n"),
+            scene + ":3:14: error: boolean expression expected\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n"
+                                      "  c.x = c.y ? 1.0 : 0.0;\n}\n"),
+            scene + ":3:13: error: boolean expression expected\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(1.0);\n"
+                                      "  float y = vec2(1.0, 2.0, 3.0).x;\n}\n"),
+            scene + ":3:13: error: 'constructor' : too many arguments\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n"
+                                      "  c = vec4(vec2(1.0, 2.0, 3.0), 1.0, 1.0);\n}\n"),
+            scene + ":2: error: 'constructor' : too many arguments\n");
+}
+
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n\n\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(nope);\n}\n");
