@@ -245,8 +245,9 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
     out.rejected_known = true;
     out.rejected = std::move(why);
   };
-  // The twin that lifts the constants too, unless the driver rejects it (a
-  // constant some other constant needs): then the one of the function bodies.
+  // The twin that lifts the constants too, unless glslang or the driver
+  // rejects it (a constant some other constant needs): then the one of the
+  // function bodies.
   for (const LiftScope scope : {LiftScope::WithConstants, LiftScope::FunctionBodies}) {
     LiftedLiterals lifted = lift_literals(job.source, job.shaderlib_dir, scope);
     const bool constants = scope == LiftScope::WithConstants;
@@ -263,10 +264,15 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
       return out;
     }
     if (give_up()) return out;
-    // The exact program built: a twin the driver rejects is only not there.
-    Diagnostics rejected;
+    // The exact program built: a twin that glslang or the driver rejects is
+    // only not there. glslang checks it first, as every text the driver
+    // sees; in the same request, the preprocessor gives the knobs' values.
     const Source twin = twin_source(job.source, lifted);
-    std::optional<Program> built = Program::build(twin, &rejected);
+    std::string active;
+    Diagnostics rejected = validate(twin, &active, knob_probes());
+    std::optional<Program> built;
+    if (count_errors(rejected) == 0 && !give_up()) built = Program::build(twin, &rejected);
+    if (out.gave_up) return out;
     if (!built) {
       failed = code;
       if (constants) {
@@ -282,10 +288,7 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
     // A knob's #define or -D may hold a lifted number (a constant): its
     // value is then the tweak's, which the twin's preprocessor gives by name.
     std::vector<KnobValue> knobs;
-    if (constants) {
-      if (give_up()) return out;
-      knobs = knob_values(twin);
-    }
+    if (constants) knobs = knob_values(twin, &active);
     out.twin = Twin{scope, std::move(code), std::move(*built), std::move(knobs)};
     return out;
   }
@@ -293,7 +296,7 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
 }
 
 bool Scene::take_twin(TwinResult result) {
-  failed_twins_[0] = std::move(result.failed[0]);  // what the driver rejects holds whatever runs now
+  failed_twins_[0] = std::move(result.failed[0]);  // what is rejected holds whatever runs now
   failed_twins_[1] = std::move(result.failed[1]);
   // Another program runs meanwhile (or a tweak): wants_twin() asks again.
   if (result.generation != generation_ || !program_ || showing_twin_) return false;

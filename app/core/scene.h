@@ -220,7 +220,7 @@ class Scene {
   std::vector<std::string> shown_literals_;  // the numbers the twin shows while it does, as written
   int twin_checked_ = -1;      // the generation prepare_twin() last looked at
   int twin_current_ = -1;      // the generation twin_ was last found to be the twin of
-  std::string failed_twins_[2];  // by LiftScope, the code of the skeleton whose twin the driver rejected
+  std::string failed_twins_[2];  // by LiftScope, the code of the skeleton whose twin was rejected
   std::optional<Diagnostic> constants_rejected_;
   Diagnostics pending_diagnostics_;
   void cache(Built built);

@@ -12,7 +12,7 @@
 //   twin makes them plain variables: a local `const float` loses its
 //   `const`, and a global float declaration's initialiser moves into
 //   main(). A constant that an integer constant, an array size or a
-//   global's initialiser needs then makes the driver reject the twin, and
+//   global's initialiser needs then makes glslang reject the twin, and
 //   the scene falls back to the FunctionBodies twin.
 // Never: the bundled shaderlib, ints, doubles, hex, #if lines.
 #pragma once

@@ -322,7 +322,7 @@ class WindowApp {
       if (project_.take_twins(std::exchange(twin_results_, {}))) project_.commit_twins();
       if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
       // Unchanged but not cancelled: the twins were current already, or
-      // there is nothing to lift, or the driver rejected them.
+      // there is nothing to lift, or glslang or the driver rejected them.
       if (options_.verbose)
         std::cerr << "raymarching: "
                   << (built == ReloadStatus::Swapped ? "twins built"
@@ -498,7 +498,7 @@ class WindowApp {
   }
 
   // -v: passes whose constants' numbers compile when changed, and why.
-  // The driver's error names the constant that needs one.
+  // glslang's error is at the constant that needs one.
   void log_constants_compiled() const {
     for (const Pass& pass : project_.passes())
       if (const auto& why = pass.scene->constants_twin_rejected())

@@ -364,7 +364,8 @@ TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
   EXPECT_FALSE(wide.constants_twin_rejected());
 
   // An int constant made from kSize: that twin does not compile, and the
-  // driver's error says where (for -v).
+  // error says where (for -v). It is glslang's: glslang checks a twin before
+  // the driver sees it, as it checks every text.
   const auto needed = dir_ / "needed.frag";
   Scene narrow(needed, {});
   ASSERT_NO_FATAL_FAILURE(load_with_twin(narrow, needed, with(scene, "float kBlue", "const int kCount = int(kSize * 4.0);\nfloat kBlue")));
@@ -372,6 +373,8 @@ TEST_F(TweakGpu, AConstantsNumberIsATweakUnlessAnotherConstantNeedsIt) {
   ASSERT_TRUE(why);
   EXPECT_EQ(fs::path(why->path), needed);
   EXPECT_EQ(why->line, 3) << why->str();
+  EXPECT_EQ(why->column, 18) << why->str();
+  EXPECT_EQ(why->message, "'=' : global const initializers must be constant 'const int'");
   write_file(needed, with(test::read_file(needed), "uv.x * 0.25", "uv.x * 0.5"));
   ASSERT_EQ(narrow.prepare(), ReloadStatus::Swapped);
   EXPECT_EQ(narrow.times().driver, 0.0) << "a function body's number is still a tweak";
