@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
-#include <initializer_list>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -70,32 +69,18 @@ std::optional<size_t> sole_assignment(std::string_view line) {
   return found;
 }
 
-// Where `line` has its only word among `words`, or its only `mark`
-// character besides them; nullopt where it has none or several.
-std::optional<size_t> sole_place(std::string_view line, std::initializer_list<std::string_view> words, char mark = 0) {
+// Where `line` has its only word that `is_subject(word, its end)` takes, or
+// its only `mark` character besides; nullopt where it has none or several.
+template <typename IsSubject>
+std::optional<size_t> sole_place(std::string_view line, IsSubject is_subject, char mark = 0) {
   std::optional<size_t> found;
   int count = 0;
   lexing::any_word(line, [&](size_t begin, size_t end) {
-    for (std::string_view word : words)
-      if (line.substr(begin, end - begin) == word) found = begin, ++count;
+    if (is_subject(line.substr(begin, end - begin), end)) found = begin, ++count;
     return count > 1;
   });
   for (size_t i = 0; mark && i < line.size(); ++i)
     if (line[i] == mark) found = i, ++count;
-  return count == 1 ? found : std::nullopt;
-}
-
-// Where `line` calls its only constructor of a scalar, vector or matrix
-// type (`vec2(`); nullopt where it has none or several.
-std::optional<size_t> sole_constructor(std::string_view line) {
-  std::optional<size_t> found;
-  int count = 0;
-  lexing::any_word(line, [&](size_t begin, size_t end) {
-    const size_t after = lexing::skip_blanks(line, end);
-    if (after < line.size() && line[after] == '(' && lexing::components_of(line.substr(begin, end - begin)))
-      found = begin, ++count;
-    return count > 1;
-  });
   return count == 1 ? found : std::nullopt;
 }
 
@@ -110,8 +95,14 @@ std::optional<size_t> unquoted_subject(std::string_view message, std::string_vie
   if (message.starts_with("break statement")) return lexing::find_word(line, "break");
   if (message.starts_with("continue statement")) return lexing::find_word(line, "continue");
   if (message.starts_with(kNoValue)) return lexing::find_word(line, message.substr(kNoValue.size()));
-  if (message == "boolean expression expected") return sole_place(line, {"if", "while"}, '?');
-  if (message.starts_with("'constructor' : ")) return sole_constructor(line);
+  if (message == "boolean expression expected")
+    return sole_place(line, [](std::string_view word, size_t) { return word == "if" || word == "while"; }, '?');
+  if (message.starts_with("'constructor' : ")) {  // a scalar, vector or matrix type's: `vec2(`
+    return sole_place(line, [&](std::string_view word, size_t end) {
+      const size_t after = lexing::skip_blanks(line, end);
+      return after < line.size() && line[after] == '(' && lexing::components_of(word).has_value();
+    });
+  }
   return std::nullopt;
 }
 

@@ -270,9 +270,9 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
     const Source twin = twin_source(job.source, lifted);
     std::string active;
     Diagnostics rejected = validate(twin, &active, knob_probes());
+    if (give_up()) return out;
     std::optional<Program> built;
-    if (count_errors(rejected) == 0 && !give_up()) built = Program::build(twin, &rejected);
-    if (out.gave_up) return out;
+    if (count_errors(rejected) == 0) built = Program::build(twin, &rejected);
     if (!built) {
       failed = code;
       if (constants) {
