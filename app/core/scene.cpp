@@ -264,17 +264,16 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
       return out;
     }
     if (give_up()) return out;
-    // The exact program built: a twin that glslang or the driver rejects is
-    // only not there. glslang checks it first, as every text the driver
-    // sees; in the same request, the preprocessor gives the knobs' values.
+    // Built as every text is (compile(): glslang, then the driver): a twin
+    // that either rejects is only not there. The same glslang request gives
+    // the knobs' values.
     const Source twin = twin_source(job.source, lifted);
-    std::string active;
-    Diagnostics rejected = validate(twin, &active, knob_probes());
-    if (give_up()) return out;
-    std::optional<Program> built;
-    if (count_errors(rejected) == 0) built = Program::build(twin, &rejected);
-    if (!built) {
+    ReloadTimes times;  // a twin's are not reported
+    Compiled built = compile(twin, &times, give_up);
+    if (built.put_off) return out;
+    if (!built.program) {
       failed = code;
+      const Diagnostics& rejected = built.diagnostics;
       if (constants) {
         const auto error = std::find_if(rejected.begin(), rejected.end(),
                                         [](const Diagnostic& d) { return d.severity == Severity::Error; });
@@ -284,12 +283,12 @@ Scene::TwinResult Scene::build_twin(const TwinJob& job, const OnBuilt& on_built,
     }
     if (constants) note_rejected(std::nullopt);
     if (give_up()) return out;
-    if (on_built) on_built(job.path, *built, twin);
+    if (on_built) on_built(job.path, *built.program, twin);
     // A knob's #define or -D may hold a lifted number (a constant): its
     // value is then the tweak's, which the twin's preprocessor gives by name.
     std::vector<KnobValue> knobs;
-    if (constants) knobs = knob_values(twin, &active);
-    out.twin = Twin{scope, std::move(code), std::move(*built), std::move(knobs)};
+    if (constants) knobs = knob_values(twin, &built.active);
+    out.twin = Twin{scope, std::move(code), std::move(*built.program), std::move(knobs)};
     return out;
   }
   return out;
