@@ -513,8 +513,10 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           std::optional<LeftOpen> left_open;
           if (missing_endif) {
             left_open = conditional_left_open(source);
-          } else if (*severity == Severity::Error && !after_error) {
-            left_open = brace_left_open_before(source, *final_line);
+          } else if (*severity == Severity::Error) {
+            // An earlier error may have misled the brace count; a syntax
+            // error is the last glslang's parser names.
+            if (!after_error) left_open = brace_left_open_before(source, *final_line);
             if (!left_open) left_open = declaration_left_open_before(source, *final_line, col, message);
           }
           if (left_open) {

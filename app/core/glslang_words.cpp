@@ -46,7 +46,8 @@ std::string spelt(std::string_view token) {
 }
 
 // Bison's "syntax error, unexpected A, expecting B or C or D": each token
-// after "unexpected " and "expecting " or " or " is spelt.
+// after "unexpected " and "expecting " or " or " is spelt, and after the
+// host's "before " (core/left_open.h: "expecting B before A").
 std::string spell_syntax_error(std::string_view message) {
   std::string out;
   size_t at = 0;
@@ -54,12 +55,12 @@ std::string spell_syntax_error(std::string_view message) {
     out += message.substr(at, end - at);
     at = end;
   };
-  for (const std::string_view lead : {"unexpected ", "expecting "}) {
+  for (const std::string_view lead : {"unexpected ", "expecting ", "before "}) {
     const size_t found = message.find(lead, at);
     if (found == std::string_view::npos) continue;
     copy_to(found + lead.size());
     while (true) {
-      const size_t end = std::min(message.find(", ", at), message.find(" or ", at));
+      const size_t end = std::min({message.find(", ", at), message.find(" or ", at), message.find(" before ", at)});
       const size_t stop = end == std::string_view::npos ? message.size() : end;
       out += spelt(message.substr(at, stop - at));
       at = stop;

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/glslang_words.h"
 #include "core/lexing.h"
 
 namespace rm {
@@ -28,6 +29,19 @@ int file_of(const Source& source, int final_line) {
   return final_line >= 1 && static_cast<size_t>(final_line) <= source.line_map.size()
              ? source.line_map[static_cast<size_t>(final_line) - 1].file
              : kHostFile;
+}
+
+// The token a syntax error names by its grammar name (RIGHT_BRACE, RETURN),
+// as that name, which the message's words spell; a class of words
+// (IDENTIFIER, FLOATCONSTANT) as the code spells it, quoted, from `code`,
+// which starts at the token.
+std::string token_named(std::string_view grammar_name, std::string_view code) {
+  if (token_spelling(grammar_name)) return std::string(grammar_name);
+  const bool number = !code.empty() && (lexing::is_digit(code[0]) || code[0] == '.');
+  size_t end = 0;
+  auto exponent_sign = [&] { return number && (code[end] == '+' || code[end] == '-') && (code[end - 1] | 0x20) == 'e'; };
+  while (end < code.size() && (lexing::is_word_char(code[end]) || (number && code[end] == '.') || exponent_sign())) ++end;
+  return "'" + std::string(code.substr(0, std::max<size_t>(end, 1))) + "'";
 }
 
 }  // namespace
@@ -98,12 +112,13 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, int e
   if (failing_at == std::string::npos) return std::nullopt;
   // The token is the first of its line, or the text's end (which glslang
   // names INT, on the line after the last).
+  const size_t token_at = lexing::skip_blanks(code, failing_at);
   const bool at_text_end = code.find_first_not_of(" \t\r\n\f\v", failing_at) == std::string::npos;
-  if (!at_text_end && lexing::skip_blanks(code, failing_at) + 1 - failing_at != static_cast<size_t>(column))
-    return std::nullopt;
+  if (!at_text_end && token_at + 1 - failing_at != static_cast<size_t>(column)) return std::nullopt;
   // Back to the code before it, past whole conditionals (the host's
   // #ifdef RM_VIEW): had one been compiled, the error would be in it.
   int depth = 0;
+  bool past_directive = false;
   size_t begin = failing_at;
   for (int number = error_line - 1; number >= 1; --number) {
     const size_t end = begin - 1;  // the '\n' before the line below
@@ -112,14 +127,23 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, int e
     if (const auto d = lexing::directive(line)) {
       if (d->name == "endif") ++depth;
       else if (opens_conditional(d->name) && depth > 0) --depth;
+      past_directive = true;
       continue;
     }
     if (depth > 0 || lexing::skip_blanks(line, 0) == line.size()) continue;
     const int file = file_of(source, number);
-    if (file < 0 || file == file_of(source, error_line)) return std::nullopt;
-    const size_t last = line.find_last_not_of(" \t\r\f\v");
-    return LeftOpen{number, static_cast<int>(last) + 2,
-                    message.substr(0, at) + "syntax error at the end of the file" + message.substr(token_end)};
+    const int last_column = static_cast<int>(line.find_last_not_of(" \t\r\f\v")) + 2;  // just past the code
+    if (file >= 0 && file != file_of(source, error_line))
+      return LeftOpen{number, last_column,
+                      message.substr(0, at) + "syntax error at the end of the file" + message.substr(token_end)};
+    // In the same file, with no directive between (which branch was
+    // compiled is not known here), the line above was left unfinished.
+    const size_t expecting = message.find(", expecting ", token_end);
+    if (file < 0 || past_directive || at_text_end || expecting == std::string::npos) return std::nullopt;
+    const std::string_view name = std::string_view(message).substr(at + unexpected.size(), token_end - at - unexpected.size());
+    return LeftOpen{number, last_column,
+                    message.substr(0, at) + "syntax error" + message.substr(expecting) + " before " +
+                        token_named(name, std::string_view(code).substr(token_at))};
   }
   return std::nullopt;
 }
