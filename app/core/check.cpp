@@ -84,6 +84,35 @@ std::optional<size_t> sole_place(std::string_view line, IsSubject is_subject, ch
   return count == 1 ? found : std::nullopt;
 }
 
+// Where `line` has its only integer literal past 32 bits, the one that
+// glslang's "numeric (hexadecimal, octal) literal too big" is about.
+std::optional<size_t> sole_literal_too_big(std::string_view line) {
+  std::optional<size_t> found;
+  int count = 0;
+  for (size_t start = 0, end = 0; start < line.size(); start = std::max(start + 1, end)) {
+    const bool starts_number = lexing::is_digit(line[start]) &&
+                               (start == 0 || !(lexing::is_word_char(line[start - 1]) || line[start - 1] == '.'));
+    if (!starts_number) continue;
+    for (end = start; end < line.size() && lexing::is_word_char(line[end]);) ++end;
+    if (end < line.size() && line[end] == '.') continue;  // a float
+    std::string_view digits = line.substr(start, end - start);
+    if (digits.back() == 'u' || digits.back() == 'U') digits.remove_suffix(1);
+    int base = digits.size() > 1 && digits[0] == '0' ? 8 : 10;
+    if (digits.size() > 2 && (digits[1] == 'x' || digits[1] == 'X')) base = 16, digits.remove_prefix(2);
+    unsigned long long value = 0;
+    bool integer = !digits.empty();
+    for (const char c : digits) {
+      const int digit = lexing::is_digit(c)                                          ? c - '0'
+                        : std::isxdigit(static_cast<unsigned char>(c)) ? std::tolower(static_cast<unsigned char>(c)) - 'a' + 10
+                                                                       : base;
+      integer = integer && digit < base;  // else a float (1e5)
+      value = std::min(value * static_cast<unsigned>(base) + static_cast<unsigned>(digit), 1ULL << 40);
+    }
+    if (integer && value > 0xFFFFFFFFULL) found = start, ++count;
+  }
+  return count == 1 ? found : std::nullopt;
+}
+
 // The column of what a message that quotes no token is about, where the
 // line leaves no doubt: a stray break or continue, the function that
 // returns no value, the condition that is no bool (glslang puts it at the
@@ -95,6 +124,7 @@ std::optional<size_t> unquoted_subject(std::string_view message, std::string_vie
   if (message.starts_with("break statement")) return lexing::find_word(line, "break");
   if (message.starts_with("continue statement")) return lexing::find_word(line, "continue");
   if (message.starts_with(kNoValue)) return lexing::find_word(line, message.substr(kNoValue.size()));
+  if (message.ends_with(" literal too big")) return sole_literal_too_big(line);
   if (message == "boolean expression expected")
     return sole_place(line, [](std::string_view word, size_t) { return word == "if" || word == "while"; }, '?');
   if (message.starts_with("'constructor' : ")) {  // a scalar, vector or matrix type's: `vec2(`

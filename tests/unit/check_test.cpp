@@ -131,7 +131,8 @@ TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
 
 // glslang quotes no token for some errors; the column is that of what the
 // message is about where the line leaves no doubt, in an include too, and
-// left out where it does not (two constructors on one line).
+// left out where it does not (two constructors on one line). A literal too
+// big is the line's one integer literal past 32 bits.
 TEST(Check, ErrorsThatQuoteNoTokenGetTheColumnOfTheirSubject) {
   TempDir dir;
   write_file(dir / "lib.glsl", "float g(float x) {\n  x += 1.0; // no return\n}\n");
@@ -155,6 +156,14 @@ TEST(Check, ErrorsThatQuoteNoTokenGetTheColumnOfTheirSubject) {
   EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n"
                                       "  c = vec4(vec2(1.0, 2.0, 3.0), 1.0, 1.0);\n}\n"),
             scene + ":2: error: 'constructor' : too many arguments\n");
+  // An integer literal past 32 bits, of any base; a float's digits and a comment's are none.
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n"
+                                      "  float x = 4294967296.0; int i = 1 + 4294967296; // 99999999999\n"
+                                      "  c = vec4(x, i, 1e10, 1.0);\n}\n"),
+            scene + ":2:39: error: numeric literal too big\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n"
+                                      "  uint u = 0xFFFFFFFFu + 0x1fFFFFFFFu;\n  c = vec4(u);\n}\n"),
+            scene + ":2:26: error: hexadecimal literal too big\n");
 }
 
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
