@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -301,6 +302,62 @@ std::optional<HostLineCause> host_line_cause(const Source& source, int final_lin
   return cause;
 }
 
+// For an error that quotes `message`'s name on a line that does not spell
+// it: the one macro the line calls whose expansion does, directly or
+// through the macros it calls (the last #define of each before the line).
+// Its column on the line, and what to add to the message: which macro, and
+// where it is defined, as a C compiler's "in expansion of macro" note says.
+struct MacroExpansion {
+  int column = 0;
+  std::string note;
+};
+std::optional<MacroExpansion> macro_spelling(const Source& source, int final_line, const std::string& message) {
+  const size_t close = message[0] == '\'' ? message.find('\'', 1) : std::string::npos;
+  if (close == std::string::npos || !lexing::is_name(std::string_view(message).substr(1, close - 1))) return std::nullopt;
+  const std::string_view token = std::string_view(message).substr(1, close - 1);
+  struct Define {
+    int final_line = 0, column = 0;
+    std::string body;  // its parameters and replacement, continued lines and all
+  };
+  std::map<std::string, Define, std::less<>> defines;
+  std::string line_text;
+  std::istringstream code(lexing::strip_comments(source.text));
+  Define* continued = nullptr;
+  for (int number = 1; std::getline(code, line_text) && number <= final_line; ++number) {
+    if (number == final_line) break;
+    if (continued) {
+      continued->body += " " + line_text;
+    } else if (const auto name = lexing::defined_macro(line_text)) {
+      const size_t at = static_cast<size_t>(name->data() - line_text.data());
+      continued = &(defines[std::string(*name)] = {number, static_cast<int>(at) + 1, line_text.substr(at + name->size())});
+    }
+    if (continued && (continued->body.empty() || continued->body.back() != '\\')) continued = nullptr;
+  }
+  // Whether `name`'s expansion spells the token, looking `depth` macros deep.
+  auto spells = [&](auto&& self, std::string_view name, int depth) -> bool {
+    const auto found = defines.find(name);
+    if (found == defines.end()) return false;
+    return lexing::any_word(found->second.body, [&](size_t begin, size_t end) {
+      const std::string_view word = std::string_view(found->second.body).substr(begin, end - begin);
+      return word == token || (depth > 0 && word != name && self(self, word, depth - 1));
+    });
+  };
+  std::optional<std::pair<size_t, std::string_view>> cause;  // the call's place and the macro
+  int causes = 0;
+  lexing::any_word(line_text, [&](size_t begin, size_t end) {
+    const std::string_view word = std::string_view(line_text).substr(begin, end - begin);
+    if (spells(spells, word, 8) && (!cause || cause->second != word)) cause = {begin, word}, ++causes;
+    return causes > 1;
+  });
+  if (causes != 1) return std::nullopt;
+  const Define& define = defines.find(cause->second)->second;
+  const auto [path, line] = source.locate(define.final_line);
+  if (path.empty()) return std::nullopt;  // the host's own macros are not the user's to read
+  return MacroExpansion{static_cast<int>(cause->first) + 1,
+                        " (in expansion of macro '" + std::string(cause->second) + "', defined at " + path + ":" +
+                            std::to_string(line) + ":" + std::to_string(define.column) + ")"};
+}
+
 Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
   Diagnostic d;
   d.severity = severity;
@@ -556,7 +613,14 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
             last_error = out.size() - 1;
             continue;
           }
-          Diagnostic d = locate(source, *severity, *final_line, col, plain_words(message));
+          std::string said = plain_words(message);
+          int place = col;
+          if (col == 0)
+            if (const auto expansion = macro_spelling(source, *final_line, said)) {
+              place = expansion->column;
+              said += expansion->note;
+            }
+          Diagnostic d = locate(source, *severity, *final_line, place, std::move(said));
           const bool in_host_code = source.locate(*final_line).first.empty();
           if (*severity == Severity::Error) {
             if (after_error && follows_earlier_error(out[*last_error], d, in_host_code, said_host_code_error)) continue;

@@ -166,6 +166,28 @@ TEST(Check, ErrorsThatQuoteNoTokenGetTheColumnOfTheirSubject) {
             scene + ":2:26: error: hexadecimal literal too big\n");
 }
 
+// An error glslang puts on a line that does not spell its token, which a
+// macro's expansion brought there: the column is the macro's call on the
+// line, and the message says which macro and where it is defined, through
+// a macro it calls, one continued over lines, one of an include. Two macros
+// on the line that could have brought it leave the column out.
+TEST(Check, AnErrorInAMacrosExpansionIsNamedAtItsCall) {
+  TempDir dir;
+  const std::string scene = (dir / "scene.frag").string(), lib = (dir / "lib.glsl").string();
+  EXPECT_EQ(diagnostics_of_scene(dir, "#define F(x) (x + nothere)\n"
+                                      "void mainImage(out vec4 c, in vec2 f) {\n  float k = F(1.0);\n  c = vec4(k);\n}\n"),
+            scene + ":3:13: error: 'nothere' : undeclared identifier (in expansion of macro 'F', defined at " + scene +
+                ":1:9)\n");
+  write_file(dir / "lib.glsl", "#define G(x) (x * nothere)\n#define F(x) \\\n  (G(x) + 1.0)\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "#include \"lib.glsl\"\n"
+                                      "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(F(1.0));\n}\n"),
+            scene + ":3:12: error: 'nothere' : undeclared identifier (in expansion of macro 'F', defined at " + lib +
+                ":2:9)\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "#define A nothere\n#define B nothere\n"
+                                      "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(A + B);\n}\n"),
+            scene + ":4: error: 'nothere' : undeclared identifier\n");
+}
+
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"lib.glsl\"\n\n\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(nope);\n}\n");
