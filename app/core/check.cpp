@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "core/dialect_names.h"
@@ -300,6 +301,47 @@ std::optional<HostLineCause> host_line_cause(const Source& source, int final_lin
                               " changes the code the host adds around the scene: " + message};
   }
   return cause;
+}
+
+// For a constructor's error on a line with no constructor of its own:
+// glslang names the line where the call ends. The final text's line and
+// column of the one scalar, vector or matrix constructor whose call, begun
+// on a line above, closes on this one; nullopt where none or several do.
+std::optional<std::pair<int, int>> constructor_closed_on(const Source& source, int final_line) {
+  const std::string code = lexing::strip_comments(source.text);
+  size_t line_start = 0;
+  for (int number = 1; number < final_line && line_start != std::string::npos; ++number)
+    line_start = code.find('\n', line_start) == std::string::npos ? std::string::npos : code.find('\n', line_start) + 1;
+  if (line_start == std::string::npos) return std::nullopt;
+  const size_t line_end = std::min(code.find('\n', line_start), code.size());
+  std::optional<std::pair<int, int>> found;
+  int depth = 0, constructors = 0, closers = 0;
+  constexpr int kMostClosers = 8;  // each is a walk back: a line of thousands would be slow
+  for (size_t at = line_start; at < line_end; ++at) {
+    if (code[at] == '(') ++depth;
+    if (code[at] != ')' || depth-- > 0) continue;
+    depth = 0;
+    if (++closers > kMostClosers) return std::nullopt;
+    // A ')' whose '(' is on a line above: back to that '(', a few lines at most.
+    constexpr size_t kMostBytesBack = 1 << 14;
+    int nesting = 0, lines_up = 0;
+    size_t open = line_start;
+    while (open-- > 0 && line_start - open < kMostBytesBack) {
+      if (code[open] == '\n') ++lines_up;
+      else if (code[open] == ')') ++nesting;
+      else if (code[open] == '(' && nesting-- == 0) break;
+    }
+    if (open == std::string::npos || line_start - open >= kMostBytesBack) continue;
+    size_t word_end = open;
+    while (word_end > 0 && lexing::is_blank(code[word_end - 1])) --word_end;
+    size_t word_start = word_end;
+    while (word_start > 0 && lexing::is_word_char(code[word_start - 1])) --word_start;
+    if (!lexing::components_of(std::string_view(code).substr(word_start, word_end - word_start))) continue;
+    const size_t its_line = code.rfind('\n', word_start);
+    found = {final_line - lines_up, static_cast<int>(word_start - (its_line == std::string::npos ? 0 : its_line + 1)) + 1};
+    if (++constructors > 1) return std::nullopt;
+  }
+  return found;
 }
 
 // For an error that quotes `message`'s name on a line that does not spell
@@ -614,13 +656,16 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
             continue;
           }
           std::string said = plain_words(message);
-          int place = col;
-          if (col == 0)
+          int place_line = *final_line, place = col;
+          if (col == 0) {
             if (const auto expansion = macro_spelling(source, *final_line, said)) {
               place = expansion->column;
               said += expansion->note;
+            } else if (message.starts_with("'constructor' :")) {
+              if (const auto call = constructor_closed_on(source, *final_line)) std::tie(place_line, place) = *call;
             }
-          Diagnostic d = locate(source, *severity, *final_line, place, std::move(said));
+          }
+          Diagnostic d = locate(source, *severity, place_line, place, std::move(said));
           const bool in_host_code = source.locate(*final_line).first.empty();
           if (*severity == Severity::Error) {
             if (after_error && follows_earlier_error(out[*last_error], d, in_host_code, said_host_code_error)) continue;

@@ -131,8 +131,9 @@ TEST(Check, SyntaxErrorsElsewhereStayWhereGlslangPutsThem) {
 
 // glslang quotes no token for some errors; the column is that of what the
 // message is about where the line leaves no doubt, in an include too, and
-// left out where it does not (two constructors on one line). A literal too
-// big is the line's one integer literal past 32 bits.
+// left out where it does not (two constructors on one line). A constructor
+// called over lines is named where it begins. A literal too big is the
+// line's one integer literal past 32 bits.
 TEST(Check, ErrorsThatQuoteNoTokenGetTheColumnOfTheirSubject) {
   TempDir dir;
   write_file(dir / "lib.glsl", "float g(float x) {\n  x += 1.0; // no return\n}\n");
@@ -156,6 +157,17 @@ TEST(Check, ErrorsThatQuoteNoTokenGetTheColumnOfTheirSubject) {
   EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n"
                                       "  c = vec4(vec2(1.0, 2.0, 3.0), 1.0, 1.0);\n}\n"),
             scene + ":2: error: 'constructor' : too many arguments\n");
+  // A call over lines: glslang names the line where it ends; the error is
+  // at the constructor, and the '=' that failed with it is its echo. Two
+  // constructors that close on the line leave the column out.
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  mat3 m = mat3(\n"
+                                      "    1.0, 0.0, 0.0, // (\n    0.0, (1.0), 0.0,\n    0.0, 0.0);\n"
+                                      "  c = vec4(m[0], 1.0);\n}\n"),
+            scene + ":2:12: error: 'constructor' : not enough data provided for construction\n");
+  EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(vec3(1.0,\n"
+                                      "    2.0, 3.0, 4.0), 1.0);\n}\n"),
+            scene + ":3: error: 'constructor' : too many arguments\n" + scene +
+                ":2:5: error: '=' : cannot convert from 'const float' to 'out vec4'\n");
   // An integer literal past 32 bits, of any base; a float's digits and a comment's are none.
   EXPECT_EQ(diagnostics_of_scene(dir, "void mainImage(out vec4 c, in vec2 f) {\n"
                                       "  float x = 4294967296.0; int i = 1 + 4294967296; // 99999999999\n"
