@@ -179,13 +179,13 @@ ReloadStatus Project::reload() {
   return status;
 }
 
-ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled) {
-  return prepare(on_built, cancelled, true);
+ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled, const RunJobs& run) {
+  return prepare(on_built, cancelled, run, true);
 }
 
-ReloadStatus Project::prepare_without_compiling() { return prepare({}, {}, false); }
+ReloadStatus Project::prepare_without_compiling() { return prepare({}, {}, {}, false); }
 
-ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled, bool compile) {
+ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled, const RunJobs& run, bool compile) {
   pending_.reset();
   Diagnostics shown = std::exchange(diagnostics_, files_.warnings ? files_.warnings() : Diagnostics{});
   bool needs_compile = false;
@@ -199,8 +199,12 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
       image_path_,
       [&](const fs::path& file) -> VisitedPass {
         Scene& scene = scene_for(file);
-        const ReloadStatus status = compile ? scene.prepare(cancelled) : scene.prepare_without_compiling();
-        times_ += scene.times();
+        // The driver's stage waits for the walk's end: glslang's stage
+        // names the passes the graph reaches, and their links run at once.
+        const ReloadStatus status =
+            compile ? scene.prepare(cancelled, Scene::Link::Later) : scene.prepare_without_compiling();
+        times_.preprocess += scene.times().preprocess;
+        times_.validate += scene.times().validate;
         if (status == ReloadStatus::NeedsCompile) {
           needs_compile = true;
           return {};
@@ -230,13 +234,31 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
     return ReloadStatus::NeedsCompile;
   }
   if (!changed && same_passes()) return ReloadStatus::Unchanged;
-  // Warmed up in the order they are drawn: Mesa writes the code it
-  // generates to its cache on a thread of its own, and the window finds it
-  // there only once written, so the pass it draws last is warmed last.
-  for (const fs::path& file : draw_order(reached, walk.cube_size)) {
-    Scene& scene = scene_for(file);
-    scene.warm_up(on_built);
-    times_.warm += scene.times().warm;
+  // Each pass's link and warm-up, as a job of its own. Taken in the order
+  // the passes are drawn: Mesa writes the code a warm-up generates to its
+  // cache on a thread of its own, and the window finds it there only once
+  // written, so the pass it draws last is warmed last.
+  std::vector<Scene*> scenes;
+  for (const fs::path& file : draw_order(reached, walk.cube_size))
+    if (scene_for(file).built_anew()) scenes.push_back(&scene_for(file));
+  std::vector<char> linked(scenes.size(), 1);  // not vector<bool>: its jobs write on several threads
+  std::vector<std::function<void()>> jobs;
+  for (size_t i = 0; i < scenes.size(); ++i)
+    jobs.push_back([&, i] {
+      if (!scenes[i]->link()) linked[i] = 0;
+      else scenes[i]->warm_up(on_built);
+    });
+  if (run) run(jobs);
+  else for (const auto& job : jobs) job();
+  for (Scene* scene : scenes) {
+    times_.driver += scene->times().driver;
+    times_.warm += scene->times().warm;
+  }
+  if (std::find(linked.begin(), linked.end(), 0) != linked.end()) {  // the driver rejected what glslang passed
+    for (size_t i = 0; i < scenes.size(); ++i)
+      if (!linked[i]) append_new(&diagnostics_, scenes[i]->latest_diagnostics());
+    for (const fs::path& file : reached) scene_for(file).discard();
+    return ReloadStatus::Failed;
   }
   pending_ = PendingSwap{walk.reached, walk.cube_size, walk.buffer_size, std::move(swapped)};
   return ReloadStatus::Swapped;

@@ -87,7 +87,8 @@ class Project {
   // this one draws. Nothing else may be called on the project meanwhile but
   // the drawing's reads: passes(), image(), the programs and their sources.
   // `cancelled` puts off the exact build of a tweak (Scene::prepare).
-  ReloadStatus prepare(const OnBuilt& on_built = {}, const Cancelled& cancelled = {});
+  // `run` runs the passes' driver compiles and warm-ups (RunJobs).
+  ReloadStatus prepare(const OnBuilt& on_built = {}, const Cancelled& cancelled = {}, const RunJobs& run = {});
   // prepare() where no pass needs a compile (Scene::prepare_without_compiling):
   // else NeedsCompile, and the project is as it was. It reads no GL.
   ReloadStatus prepare_without_compiling();
@@ -156,7 +157,7 @@ class Project {
 
  private:
   Scene& scene_for(const fs::path& file);
-  ReloadStatus prepare(const OnBuilt& on_built, const Cancelled& cancelled, bool compile);
+  ReloadStatus prepare(const OnBuilt& on_built, const Cancelled& cancelled, const RunJobs& run, bool compile);
   Diagnostics latest_diagnostics() const;  // the file system's warnings, then each pass's
   bool collect(const fs::path& file, std::vector<fs::path>* order, Diagnostics* diags);
 

@@ -43,16 +43,17 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ReloadStatus Scene::prepare(const Cancelled& cancelled) { return prepare(cancelled, true); }
+ReloadStatus Scene::prepare(const Cancelled& cancelled, Link link) { return prepare(cancelled, true, link); }
 
-ReloadStatus Scene::prepare_without_compiling() { return prepare({}, false); }
+ReloadStatus Scene::prepare_without_compiling() { return prepare({}, false, Link::Now); }
 
-Scene::Compiled Scene::compile(const Source& source, ReloadTimes* times, const std::function<bool()>& put_off) {
+Scene::Compiled Scene::compile(const Source& source, ReloadTimes* times, const std::function<bool()>& put_off,
+                               bool link) {
   Compiled out;
   auto start = std::chrono::steady_clock::now();
   out.diagnostics = validate(source, &out.active, knob_probes());
   times->validate = ms_since(start);
-  if (count_errors(out.diagnostics) > 0) return out;
+  if (count_errors(out.diagnostics) > 0 || !link) return out;
   if (put_off && put_off()) {
     out.put_off = true;
     return out;
@@ -65,7 +66,7 @@ Scene::Compiled Scene::compile(const Source& source, ReloadTimes* times, const s
   return out;
 }
 
-ReloadStatus Scene::prepare(const Cancelled& cancelled, bool compile_allowed) {
+ReloadStatus Scene::prepare(const Cancelled& cancelled, bool compile_allowed, Link link) {
   auto put_off = [&] {
     if (!showing_twin_ || !cancelled || !cancelled()) return false;
     attempted_ = false;  // the next prepare() builds it
@@ -116,11 +117,17 @@ ReloadStatus Scene::prepare(const Cancelled& cancelled, bool compile_allowed) {
     return ReloadStatus::NeedsCompile;
   }
   if (put_off()) return ReloadStatus::Unchanged;
-  Compiled built = compile(source, &times_, put_off);
+  const bool link_now = link == Link::Now || showing_twin_;
+  Compiled built = compile(source, &times_, put_off, link_now);
   if (built.put_off) return ReloadStatus::Unchanged;
-  if (!built.program) {
+  if (count_errors(built.diagnostics) > 0 || (link_now && !built.program)) {
     diagnostics_ = std::move(built.diagnostics);
     return ReloadStatus::Failed;
+  }
+  if (!link_now) {
+    validated_ = Validated{std::move(source), std::move(built.active)};
+    pending_diagnostics_ = std::move(built.diagnostics);  // warnings only
+    return ReloadStatus::Swapped;
   }
   if (put_off()) return ReloadStatus::Unchanged;
   std::string text = source.text;
@@ -171,6 +178,25 @@ ReloadStatus Scene::take_exact(ExactResult result) {
   return ReloadStatus::Swapped;
 }
 
+bool Scene::link() {
+  if (!validated_) return true;
+  Validated checked = std::move(*validated_);
+  validated_.reset();
+  Diagnostics driver;
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<Program> program = Program::build(checked.source, &driver);
+  times_.driver = ms_since(start);
+  if (!program) {
+    pending_diagnostics_.clear();
+    diagnostics_ = std::move(driver);
+    return false;
+  }
+  std::string text = checked.source.text;
+  pending_ = Built{std::move(text), std::move(*program), std::move(checked.source), std::move(checked.active)};
+  pending_is_new_ = true;
+  return true;
+}
+
 void Scene::warm_up(const OnBuilt& on_built) {
   if (!pending_ || !pending_is_new_ || !on_built) return;
   pending_is_new_ = false;
@@ -210,6 +236,10 @@ void Scene::commit() {
 
 void Scene::discard() {
   pending_is_new_ = false;
+  if (validated_) {
+    validated_.reset();
+    attempted_ = false;
+  }
   if (pending_tweak_) {
     pending_tweak_.reset();
     attempted_ = false;

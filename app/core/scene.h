@@ -30,6 +30,13 @@ struct ReloadTimes {
 using OnBuilt = std::function<void(const fs::path& pass, const Program&, const Source&)>;
 // Asked between a build's stages: true puts the build off (a background one).
 using Cancelled = std::function<bool()>;
+// Runs jobs that each touch one pass (its driver's compile and link, its
+// warm-up draw) and returns when all are done: on several threads, each
+// with a GL context that shares the caller's objects (the window's
+// builder), or, where none is given, one after another on this thread.
+// llvmpipe compiles one program on one core; two passes on two threads
+// take about half as long.
+using RunJobs = std::function<void(const std::vector<std::function<void()>>& jobs)>;
 
 enum class ReloadStatus {
   Swapped,       // a new program is running
@@ -59,7 +66,20 @@ class Scene {
   // may run on another thread whose GL context shares this one's objects;
   // The exact build of a tweak (only it: the picture on screen is right)
   // is put off where `cancelled` says so, before each stage, as Unchanged.
-  ReloadStatus prepare(const Cancelled& cancelled = {});
+  // With Link::Later, a new text that glslang passes is Swapped with the
+  // driver's compile and link still to do (unlinked(): link()), so that a
+  // project's passes link on several threads at once (not a tweak's exact
+  // build, which links at once).
+  enum class Link { Now, Later };
+  ReloadStatus prepare(const Cancelled& cancelled = {}, Link link = Link::Now);
+  bool unlinked() const { return validated_.has_value(); }
+  // Whether the latest prepare() compiled a program anew, or left one to
+  // link(): one for link() and warm_up() (not one from the cache).
+  bool built_anew() const { return validated_ || (pending_ && pending_is_new_); }
+  // The driver's compile and link of the text prepare() left unlinked;
+  // false if the driver rejects it (diagnostics() say why). It touches this
+  // scene alone, on any thread whose GL context shares the scene's objects.
+  bool link();
   // prepare() for a save that needs no compile: a number edit the twin
   // shows, a text built before (the cache), a comment edit, a broken
   // include, the text of the tweak on screen (Unchanged: its exact program
@@ -75,13 +95,18 @@ class Scene {
   void discard();
   // The source of the prepared program if there is one, else the running one's.
   const Source& latest_source() const {
-    return pending_tweak_ ? pending_tweak_->source : pending_ ? pending_->source : good_source_;
+    return pending_tweak_ ? pending_tweak_->source
+           : pending_     ? pending_->source
+           : validated_   ? validated_->source
+                          : good_source_;
   }
   // Its active_code(): the exact program's while a tweak is prepared (the
   // same lines, other numbers).
-  const std::string& latest_active() const { return pending_ && !pending_tweak_ ? pending_->active : good_active_; }
+  const std::string& latest_active() const {
+    return pending_tweak_ ? good_active_ : pending_ ? pending_->active : validated_ ? validated_->active : good_active_;
+  }
   const Diagnostics& latest_diagnostics() const {
-    return pending_ || pending_tweak_ ? pending_diagnostics_ : diagnostics_;
+    return pending_ || pending_tweak_ || validated_ ? pending_diagnostics_ : diagnostics_;
   }
   // New -I/-D options (a view, a preset); they apply at the next reload().
   void set_options(SourceOptions options) { options_ = std::move(options); }
@@ -208,6 +233,11 @@ class Scene {
   static constexpr size_t kCacheSize = 8;
   std::vector<Built> cache_;
   std::optional<Built> pending_;  // prepared, not yet committed
+  struct Validated {  // glslang passed it; link() compiles it
+    Source source;
+    std::string active;
+  };
+  std::optional<Validated> validated_;
   bool pending_is_new_ = false;   // compiled by the latest prepare(), not warmed up yet
   std::optional<Twin> twin_, pending_twin_;
   struct Tweak {
@@ -224,16 +254,17 @@ class Scene {
   std::optional<Diagnostic> constants_rejected_;
   Diagnostics pending_diagnostics_;
   void cache(Built built);
-  ReloadStatus prepare(const Cancelled& cancelled, bool compile);
-  // glslang's validation of `source`, then the driver's compile and link,
-  // each stage timed in `times`; `put_off` is asked before each.
+  ReloadStatus prepare(const Cancelled& cancelled, bool compile, Link link);
+  // glslang's validation of `source`, then (with `link`) the driver's
+  // compile and link, each stage timed in `times`; `put_off` is asked before each.
   struct Compiled {
     std::optional<Program> program;
     Diagnostics diagnostics;  // the errors, or else the warnings
     std::string active;       // see active_code()
     bool put_off = false;
   };
-  static Compiled compile(const Source& source, ReloadTimes* times, const std::function<bool()>& put_off);
+  static Compiled compile(const Source& source, ReloadTimes* times, const std::function<bool()>& put_off,
+                          bool link = true);
 };
 
 }  // namespace rm

@@ -1,5 +1,6 @@
 #include "window/builder.h"
 
+#include <exception>
 #include <iostream>
 #include <new>
 
@@ -9,6 +10,18 @@
 
 namespace rm {
 
+namespace {
+
+// The contexts of the build that runs on this thread: its builder's, or
+// those run_jobs() lent it.
+struct Contexts {
+  GLFWwindow* context = nullptr;
+  GLFWwindow* probe = nullptr;
+};
+thread_local Contexts current;
+
+}  // namespace
+
 void Builder::open(GLFWwindow* window) {
   if (context_) return;
   // The window's context hints (version, profile) still hold.
@@ -16,6 +29,7 @@ void Builder::open(GLFWwindow* window) {
   context_ = glfwCreateWindow(1, 1, "raymarching builder", nullptr, window);
   if (context_) probe_ = glfwCreateWindow(1, 1, "raymarching builder probe", nullptr, window);
   glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+  open_ = context_ != nullptr;
 }
 
 Builder::~Builder() {
@@ -34,16 +48,51 @@ Builder::~Builder() {
 // entry if it is written, or else generates the code there, on this
 // thread, which takes long enough for the first entry to be written.
 void Builder::in_probe_context(const std::function<void()>& draw) {
-  if (!probe_) return;
-  glfwMakeContextCurrent(probe_);
+  if (!current.probe) return;
+  glfwMakeContextCurrent(current.probe);
   draw();
-  glfwMakeContextCurrent(context_);
+  glfwMakeContextCurrent(current.context);
+}
+
+void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Builder& helper) {
+  std::atomic<size_t> next{0};
+  auto take_jobs = [&] {
+    for (size_t i = next++; i < jobs.size(); i = next++) jobs[i]();
+  };
+  if (jobs.size() < 2 || !helper.open_ || helper.busy()) {
+    take_jobs();
+    return;
+  }
+  std::exception_ptr beside_failed, here_failed;
+  size_t beside_took = 0;
+  DeepStackThread beside([&] {
+    current = {helper.context_, helper.probe_};
+    glfwMakeContextCurrent(helper.context_);
+    try {
+      for (size_t i = next++; i < jobs.size(); i = next++, ++beside_took) jobs[i]();
+    } catch (...) {
+      beside_failed = std::current_exception();
+    }
+    if (beside_took > 0) glFinish();  // what it made complete for the window's context, as start()'s is
+    glfwMakeContextCurrent(nullptr);
+  });
+  try {
+    take_jobs();
+  } catch (...) {
+    here_failed = std::current_exception();
+  }
+  beside.join();
+  if (beside_took > 0) job_threads_ = 2;
+  if (here_failed) std::rethrow_exception(here_failed);
+  if (beside_failed) std::rethrow_exception(beside_failed);
 }
 
 void Builder::start(std::function<ReloadStatus()> build) {
+  job_threads_ = 1;
   done_ = false;
   cancel_ = false;
   thread_ = DeepStackThread([this, build = std::move(build)] {
+    current = {context_, probe_};
     glfwMakeContextCurrent(context_);
     try {
       status_ = build();

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "core/deep_stack.h"
 #include "core/scene.h"
@@ -44,12 +45,25 @@ class Builder {
   // that shares the window's objects, then makes the builder's current
   // again. A warm-up drawn once more there makes sure that Mesa's cache
   // holds the new program's machine code before the window draws it
-  // (see the .cpp). Without that context, `draw` is not run.
+  // (see the .cpp). Without that context, `draw` is not run. On a thread
+  // of run_jobs() that works in another builder's contexts, that builder's.
   void in_probe_context(const std::function<void()>& draw);
+
+  // On the builder's thread, during a build: runs `jobs` (core/scene.h's
+  // RunJobs) here and, where `helper` is open and idle, on a second thread
+  // in helper's contexts, each thread taking the next job not taken. The
+  // window keeps `helper` idle meanwhile: it starts and takes background
+  // builds only while the saves' builder is idle.
+  void run_jobs(const std::vector<std::function<void()>>& jobs, const Builder& helper);
+  // How many threads the latest build's run_jobs() ran jobs on (1 or 2);
+  // read once the build has finished.
+  int job_threads() const { return job_threads_; }
 
  private:
   GLFWwindow* context_ = nullptr;
   GLFWwindow* probe_ = nullptr;
+  std::atomic<bool> open_{false};  // read by another builder's run_jobs()
+  int job_threads_ = 1;
   DeepStackThread thread_;  // the driver's compiler recurses on deep shaders
   std::atomic<bool> done_{false}, cancel_{false};
   ReloadStatus status_ = ReloadStatus::Unchanged;

@@ -13,6 +13,7 @@
 #include <ctime>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -256,7 +257,9 @@ class WindowApp {
     ImageTextures::HeldImages held = graph_.images_held();
     builder_.start([this, warm = warm_up_hook(held, builder_, &images_read_), held = std::move(held)] {
       images_read_.clear();
-      const ReloadStatus status = project_.prepare(warm, [this] { return builder_.cancelled(); });
+      const ReloadStatus status =
+          project_.prepare(warm, [this] { return builder_.cancelled(); },
+                           [this](const std::vector<std::function<void()>>& jobs) { builder_.run_jobs(jobs, background_); });
       if (status != ReloadStatus::Failed) read_images(project_.images_read(), held);
       return status;
     });
@@ -310,7 +313,7 @@ class WindowApp {
   void take_build(ReloadStatus built) {
     if (built == ReloadStatus::Swapped) project_.commit();
     graph_.hand_over(std::exchange(images_read_, {}));
-    loaded(built);
+    loaded(built, builder_.job_threads());
     shots_wait_for_build_ = false;
     if (std::exchange(load_again_, false)) load();
   }
@@ -351,9 +354,13 @@ class WindowApp {
   // graph takes it. 0 where the graph's own is current, or where the file
   // cannot be read: the graph then says why, without reading it again. A
   // large image held the window for its decoding and upload (4096x4096
-  // noise: 1.2 s). `read`: where that build keeps what it read.
+  // noise: 1.2 s). `read`: where that build keeps what it read; the
+  // build's passes warm up on two threads (Builder::run_jobs), which take
+  // turns here.
   using ImagesRead = std::vector<std::pair<ChannelSpec, ImageTextures::Entry>>;
   static GLuint read_ahead(const ChannelSpec& spec, const ImageTextures::HeldImages& held, ImagesRead& read) {
+    static std::mutex reading;
+    const std::lock_guard<std::mutex> lock(reading);
     if (!ImageTextures::stale(spec, held)) return 0;
     for (const auto& [done, texture] : read)
       if (ImageTextures::key_of(done) == ImageTextures::key_of(spec)) return texture.texture.get();
@@ -426,7 +433,8 @@ class WindowApp {
     }
   }
 
-  void loaded(ReloadStatus status) {
+  // `job_threads`: how many threads the passes' links and warm-ups ran on.
+  void loaded(ReloadStatus status, int job_threads = 1) {
     watcher_->watch(project_.watch_list());
     std::string channel_error;
     if (status == ReloadStatus::Unchanged) {  // a channel image may have changed
@@ -482,7 +490,10 @@ class WindowApp {
         for (const fs::path& pass : project_.rebuilt()) std::cerr << ' ' << pass.filename().string();
         const ReloadTimes& t = project_.times();
         std::cerr << "; preprocess " << t.preprocess << " ms, glslang " << t.validate << " ms, driver compile+link "
-                  << t.driver << " ms, warm-up " << t.warm << " ms)";
+                  << t.driver << " ms, warm-up " << t.warm << " ms";
+        // The passes' links and warm-ups ran side by side: their times are sums.
+        if (job_threads > 1) std::cerr << ", the last two summed over " << job_threads << " threads";
+        std::cerr << ')';
       }
       std::cerr << " at " << steady_ns() << '\n';
       std::cerr << "raymarching: gl objects: " << to_string(take_gl_census()) << '\n';

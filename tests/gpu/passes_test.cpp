@@ -3,7 +3,12 @@
 // that touch one pass.
 #include <gtest/gtest.h>
 
+#include <epoxy/egl.h>
 #include <glm/gtc/type_ptr.hpp>
+
+#include <mutex>
+#include <set>
+#include <thread>
 
 #include "core/capture.h"
 #include "core/frame_graph.h"
@@ -345,6 +350,76 @@ TEST_F(Passes, NewProgramsAreWarmedUpInTheOrderTheyAreDrawn) {
   EXPECT_EQ(warmed, (std::vector<fs::path>{"buffer_a.frag", "buffer_b.frag", "image.frag"}));
   ASSERT_EQ(project.passes().size(), 3u);
   for (size_t i = 0; i < 3; ++i) EXPECT_EQ(project.passes()[i].file.filename(), warmed[i]) << "drawn " << i;
+}
+
+// The passes a save compiles anew (not those from the cache) link and warm
+// up as jobs, one a pass, which the window's builder runs on two threads at
+// once (Builder::run_jobs). Here the second thread has an EGL context of its
+// own that shares this one's objects; its programs draw here as the others
+// do. A pass the driver rejects after glslang passed it fails the whole
+// save, with its error, and the last good graph keeps drawing.
+TEST_F(Passes, ThePassesLinkAsJobsOnTwoThreadsAndAnyRejectedFailsTheSave) {
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0); }\n");
+  write_file(dir_ / "buffer_b.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(3.0); }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\" filter=nearest\n"
+                                  "#pragma channel1 \"buffer_b.frag\" filter=nearest\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n"
+                                  "  c = vec4(texelFetch(iChannel0, ivec2(f), 0).x, texelFetch(iChannel1, ivec2(f), 0).x, 0, 1);\n}\n");
+  const EGLDisplay display = eglGetCurrentDisplay();
+  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config = nullptr;
+  EGLint configs = 0;
+  eglChooseConfig(display, config_attribs, &config, 1, &configs);
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLContext beside = eglCreateContext(display, configs > 0 ? config : EGL_NO_CONFIG_KHR, eglGetCurrentContext(),
+                                             context_attribs);
+  ASSERT_NE(beside, EGL_NO_CONTEXT);
+  std::vector<size_t> job_counts;
+  std::set<std::thread::id> threads;
+  std::mutex threads_lock;
+  auto warm = [&](const fs::path&, const Program&, const Source&) {
+    const std::lock_guard<std::mutex> lock(threads_lock);
+    threads.insert(std::this_thread::get_id());
+  };
+  // Even jobs here, odd ones beside: both threads take part whatever their pace.
+  auto two_threads = [&](const std::vector<std::function<void()>>& jobs) {
+    job_counts.push_back(jobs.size());
+    std::thread other([&] {
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, beside);
+      for (size_t i = 1; i < jobs.size(); i += 2) jobs[i]();
+      glFinish();
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    });
+    for (size_t i = 0; i < jobs.size(); i += 2) jobs[i]();
+    other.join();
+  };
+  project_ = std::make_unique<Project>(dir_ / "image.frag", SourceOptions{});
+  ASSERT_EQ(project_->prepare(warm, {}, two_threads), ReloadStatus::Swapped) << join(project_->diagnostics());
+  project_->commit();
+  std::string error;
+  ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+  EXPECT_EQ(job_counts, std::vector<size_t>{3});
+  EXPECT_EQ(threads.size(), 2u) << "every pass warmed on one thread";
+  EXPECT_EQ(at(frame(0), 0, 0), glm::vec4(2, 3, 0, 1));
+
+  // B is new and the driver rejects it (glslang does not count uniforms); A is new too.
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(4.0); }\n");
+  write_file(dir_ / "buffer_b.frag", "uniform vec4 table[100000];\n"
+                                     "void mainImage(out vec4 c, in vec2 f) { c = table[int(f.x)]; }\n");
+  EXPECT_EQ(project_->prepare(warm, {}, two_threads), ReloadStatus::Failed);
+  ASSERT_EQ(count_errors(project_->diagnostics()), 1) << join(project_->diagnostics());
+  EXPECT_EQ(project_->diagnostics()[0].path, (dir_ / "buffer_b.frag").string());
+  EXPECT_EQ(project_->diagnostics()[0].line, 1);
+  EXPECT_EQ(at(frame(1), 0, 0), glm::vec4(2, 3, 0, 1)) << "the last good graph";
+
+  write_file(dir_ / "buffer_b.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(5.0); }\n");
+  ASSERT_EQ(project_->prepare(warm, {}, two_threads), ReloadStatus::Swapped) << join(project_->diagnostics());
+  project_->commit();
+  ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+  EXPECT_EQ(job_counts, (std::vector<size_t>{3, 2, 1})) << "a job for each pass compiled anew";
+  EXPECT_EQ(at(frame(2), 0, 0), glm::vec4(4, 5, 0, 1)) << "A from the cache, B new";
+  eglDestroyContext(display, beside);
 }
 
 // Each with the size it drew at, which the HUD shows beside its time: a
