@@ -1,8 +1,10 @@
 #include "window/builder.h"
 
+#include <chrono>
 #include <exception>
 #include <iostream>
 #include <new>
+#include <thread>
 
 #include "core/gl.h"
 #define GLFW_INCLUDE_NONE
@@ -59,13 +61,19 @@ void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Bui
   auto take_jobs = [&] {
     for (size_t i = next++; i < jobs.size(); i = next++) jobs[i]();
   };
-  if (jobs.size() < 2 || !helper.open_ || helper.busy()) {
+  if (jobs.size() < 2) {
     take_jobs();
     return;
   }
   std::exception_ptr beside_failed, here_failed;
   size_t beside_took = 0;
   DeepStackThread beside([&] {
+    // The window opens the helper while the first program builds; a
+    // background build this save put off ends at its stage under way, and
+    // leaves its contexts free (it has not been taken yet: it is not busy()).
+    while ((!helper.open_ || helper.running()) && next < jobs.size())
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (next >= jobs.size()) return;
     current = {helper.context_, helper.probe_};
     glfwMakeContextCurrent(helper.context_);
     try {

@@ -50,10 +50,11 @@ class Builder {
   void in_probe_context(const std::function<void()>& draw);
 
   // On the builder's thread, during a build: runs `jobs` (core/scene.h's
-  // RunJobs) here and, where `helper` is open and idle, on a second thread
-  // in helper's contexts, each thread taking the next job not taken. The
-  // window keeps `helper` idle meanwhile: it starts and takes background
-  // builds only while the saves' builder is idle.
+  // RunJobs) here and on a second thread in helper's contexts, once helper
+  // is open and its own build (put off by the save) has ended, each thread
+  // taking the next job not taken. The window keeps
+  // `helper` idle meanwhile: it starts and takes background builds only
+  // while the saves' builder is idle.
   void run_jobs(const std::vector<std::function<void()>>& jobs, const Builder& helper);
   // How many threads the latest build's run_jobs() ran jobs on (1 or 2);
   // read once the build has finished.

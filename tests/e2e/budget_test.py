@@ -711,9 +711,12 @@ def first_draws_of_new_passes(proc, err, window, buffers, which, passes):
     each took less than the warm-up's time over 4 * passes, as they do
     when the window finds the code the builder generated."""
     log = open(err).read()
-    warm = re.search(r"reload ok generation 1 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms[,)]", log)
+    warm = re.search(r"reload ok generation 1 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms([,)].*)", log)
     first = re.findall(rf"first draw of (?:(?:{buffers}) in )?generation 1: a \d+x\d+ tile, ([\d.]+) ms", log)
     check(f"... and logs its warm-up and {which} first draws", warm and len(first) == passes, log[-800:])
+    # Each slow to compile: the background builder's contexts, made while
+    # the first program builds, take a pass (Builder::run_jobs).
+    check("... built on two threads", warm and "summed over 2 threads" in warm.group(2), log[-800:])
     quit_with_q(proc, window)
     if warm and len(first) == passes:
         print(f"     the builder's warm-up draws {float(warm.group(1)):.0f} ms; the window's first draws "
