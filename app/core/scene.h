@@ -67,12 +67,11 @@ class Scene {
   // The exact build of a tweak (only it: the picture on screen is right)
   // is put off where `cancelled` says so, before each stage, as Unchanged.
   // With Link::Later, a new text that glslang passes is Swapped with the
-  // driver's compile and link still to do (unlinked(): link()), so that a
-  // project's passes link on several threads at once (not a tweak's exact
-  // build, which links at once).
+  // driver's compile and link still to do (link()), so that a project's
+  // passes link on several threads at once (not a tweak's exact build,
+  // which links at once).
   enum class Link { Now, Later };
   ReloadStatus prepare(const Cancelled& cancelled = {}, Link link = Link::Now);
-  bool unlinked() const { return validated_.has_value(); }
   // Whether the latest prepare() compiled a program anew, or left one to
   // link(): one for link() and warm_up() (not one from the cache).
   bool built_anew() const { return validated_ || (pending_ && pending_is_new_); }

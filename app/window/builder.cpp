@@ -70,7 +70,8 @@ void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Bui
   DeepStackThread beside([&] {
     // The window opens the helper while the first program builds; a
     // background build this save put off ends at its stage under way, and
-    // leaves its contexts free (it has not been taken yet: it is not busy()).
+    // then leaves its contexts free (no longer running(), though still
+    // busy() until the window takes it, after this build).
     while ((!helper.open_ || helper.running()) && next < jobs.size())
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     if (next >= jobs.size()) return;

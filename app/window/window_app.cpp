@@ -372,8 +372,9 @@ class WindowApp {
   // pass reads now where its channels are bound as before, with the images
   // the graph will read anew (read ahead), and elsewhere (a new pass, a
   // channel the save changed) with textures like those it will read; and
-  // drawn so again in the probe context of `builder`, which runs the build,
-  // so that Mesa's cache holds its code before the window draws it. `held`:
+  // drawn so again in the probe context of the thread's builder (`builder`,
+  // or the one whose contexts Builder::run_jobs lent), so that Mesa's cache
+  // holds its code before the window draws it. `held`:
   // the graph's images as the build starts (read_ahead). `read`: where the
   // images it reads go; without it (a background build, which the graph
   // takes no images from), an image the graph holds stale is stood in for.
