@@ -523,6 +523,15 @@ TEST(Check, SyntaxErrorPointsAtTheUnexpectedToken) {
   EXPECT_EQ(diags[0].str(), (dir / "scene.frag").string() + ":2:18: error: syntax error, unexpected ';'");
 }
 
+// The diagnostics of scene.frag in `dir`: `body` as the body of mainImage,
+// whose code starts on line 3, after a struct Ray.
+Diagnostics diagnostics_of_main_body(const test::TempDir& dir, const std::string& body) {
+  test::write_file(dir / "scene.frag", "struct Ray { vec3 o; };\nvoid mainImage(out vec4 c, in vec2 f) {\n" + body + "}\n");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  return diags;
+}
+
 // glslang names the line of a token it did not expect, not the token: the
 // worker finds which of the line's it is (a struct's name before it is a
 // type, a word in a comment is none, the same name or sign may come twice).
@@ -546,10 +555,7 @@ TEST(Check, AnUnexpectedTokenIsPointedAt) {
       {"  c = vec4(1.0); if (c.x > 0.0) return; return return;\n", ":3:48: error: syntax error, unexpected 'return'"},
   };
   for (const auto& [body, expected] : cases) {
-    test::write_file(dir / "scene.frag",
-                     "struct Ray { vec3 o; };\nvoid mainImage(out vec4 c, in vec2 f) {\n" + body + "}\n");
-    Diagnostics diags;
-    check_scene(dir / "scene.frag", {}, &diags);
+    const Diagnostics diags = diagnostics_of_main_body(dir, body);
     ASSERT_FALSE(diags.empty()) << body;
     EXPECT_EQ(diags[0].str(), scene + expected) << body;
   }
@@ -579,13 +585,8 @@ TEST(Check, ASeparatorMissingAtALinesEndIsNamedWhereItGoes) {
       {"  c = vec4(1.0)\n#ifdef NOPE\n  c.x = 0.0;\n#endif\n  return;\n",
        ":7:3: error: syntax error, unexpected 'return', expecting ',' or ';'"},
   };
-  for (const auto& [body, expected] : cases) {
-    test::write_file(dir / "scene.frag",
-                     "struct Ray { vec3 o; };\nvoid mainImage(out vec4 c, in vec2 f) {\n" + body + "}\n");
-    Diagnostics diags;
-    check_scene(dir / "scene.frag", {}, &diags);
-    EXPECT_EQ(join(diags), scene + expected + "\n") << body;
-  }
+  for (const auto& [body, expected] : cases)
+    EXPECT_EQ(join(diagnostics_of_main_body(dir, body)), scene + expected + "\n") << body;
 }
 
 // A type error names the types as GLSL writes them, and an assignment's is
