@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <tuple>
@@ -310,9 +311,11 @@ std::optional<HostLineCause> host_line_cause(const Source& source, int final_lin
 std::optional<std::pair<int, int>> constructor_closed_on(const Source& source, int final_line) {
   const std::string code = lexing::strip_comments(source.text);
   size_t line_start = 0;
-  for (int number = 1; number < final_line && line_start != std::string::npos; ++number)
-    line_start = code.find('\n', line_start) == std::string::npos ? std::string::npos : code.find('\n', line_start) + 1;
-  if (line_start == std::string::npos) return std::nullopt;
+  for (int number = 1; number < final_line; ++number) {
+    const size_t newline = code.find('\n', line_start);
+    if (newline == std::string::npos) return std::nullopt;
+    line_start = newline + 1;
+  }
   const size_t line_end = std::min(code.find('\n', line_start), code.size());
   std::optional<std::pair<int, int>> found;
   int depth = 0, constructors = 0, closers = 0;
@@ -362,11 +365,10 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, int final_lin
     std::string body;  // its parameters and replacement, continued lines and all
   };
   std::map<std::string, Define, std::less<>> defines;
-  std::string line_text;
+  std::string line_text;  // at the loop's end, the error's line
   std::istringstream code(lexing::strip_comments(source.text));
   Define* continued = nullptr;
-  for (int number = 1; std::getline(code, line_text) && number <= final_line; ++number) {
-    if (number == final_line) break;
+  for (int number = 1; std::getline(code, line_text) && number < final_line; ++number) {
     if (continued) {
       continued->body += " " + line_text;
     } else if (const auto name = lexing::defined_macro(line_text)) {
@@ -375,20 +377,32 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, int final_lin
     }
     if (continued && (continued->body.empty() || continued->body.back() != '\\')) continued = nullptr;
   }
-  // Whether `name`'s expansion spells the token, looking `depth` macros deep.
-  auto spells = [&](auto&& self, std::string_view name, int depth) -> bool {
-    const auto found = defines.find(name);
-    if (found == defines.end()) return false;
-    return lexing::any_word(found->second.body, [&](size_t begin, size_t end) {
-      const std::string_view word = std::string_view(found->second.body).substr(begin, end - begin);
-      return word == token || (depth > 0 && word != name && self(self, word, depth - 1));
+  // The macros whose expansion spells the token: those whose body does,
+  // then, back along the uses, those whose body names one of them. Each
+  // body is read once: macros that name others many times over, many
+  // levels deep, would otherwise be walked once per path.
+  std::map<std::string_view, std::vector<std::string_view>, std::less<>> named_by;  // a macro -> those naming it
+  std::vector<std::string_view> spelling;
+  for (const auto& [name, define] : defines)
+    lexing::any_word(define.body, [&](size_t begin, size_t end) {
+      const std::string_view word = std::string_view(define.body).substr(begin, end - begin);
+      if (word == token) spelling.push_back(name);
+      else if (word != name && defines.find(word) != defines.end()) named_by[word].push_back(name);
+      return false;
     });
-  };
+  std::set<std::string_view, std::less<>> spells(spelling.begin(), spelling.end());
+  while (!spelling.empty()) {
+    const std::string_view name = spelling.back();
+    spelling.pop_back();
+    if (const auto users = named_by.find(name); users != named_by.end())
+      for (const std::string_view user : users->second)
+        if (spells.insert(user).second) spelling.push_back(user);
+  }
   std::optional<std::pair<size_t, std::string_view>> cause;  // the call's place and the macro
   int causes = 0;
   lexing::any_word(line_text, [&](size_t begin, size_t end) {
     const std::string_view word = std::string_view(line_text).substr(begin, end - begin);
-    if (spells(spells, word, 8) && (!cause || cause->second != word)) cause = {begin, word}, ++causes;
+    if (spells.count(word) && (!cause || cause->second != word)) cause = {begin, word}, ++causes;
     return causes > 1;
   });
   if (causes != 1) return std::nullopt;

@@ -198,6 +198,18 @@ TEST(Check, AnErrorInAMacrosExpansionIsNamedAtItsCall) {
   EXPECT_EQ(diagnostics_of_scene(dir, "#define A nothere\n#define B nothere\n"
                                       "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(A + B);\n}\n"),
             scene + ":4: error: 'nothere' : undeclared identifier\n");
+  // Macros that name each other many times over, many levels deep, are
+  // each read once (walked path by path, this took hours): F9's expansion
+  // does not spell the token, H's does.
+  std::string define_chain = "#define F0(a) a\n#define H nothere\n";
+  for (int level = 1; level < 10; ++level) {
+    define_chain += "#define F" + std::to_string(level) + "(a)";
+    for (int i = 0; i < 20; ++i) define_chain += " F" + std::to_string(level - 1);
+    define_chain += "\n";
+  }
+  EXPECT_EQ(diagnostics_of_scene(dir, define_chain + "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(H, F9(1));\n}\n"),
+            scene + ":13:12: error: 'nothere' : undeclared identifier (in expansion of macro 'H', defined at " + scene +
+                ":2:9)\n");
 }
 
 TEST(Check, ErrorAfterAnIncludeKeepsTheScenesLineNumber) {
