@@ -240,7 +240,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
   // written, so the pass it draws last is warmed last.
   std::vector<Scene*> scenes;
   for (const fs::path& file : draw_order(reached, walk.cube_size))
-    if (scene_for(file).built_anew()) scenes.push_back(&scene_for(file));
+    if (Scene& scene = scene_for(file); scene.built_anew()) scenes.push_back(&scene);
   std::vector<char> linked(scenes.size(), 1);  // not vector<bool>: its jobs write on several threads
   std::vector<std::function<void()>> jobs;
   for (size_t i = 0; i < scenes.size(); ++i)

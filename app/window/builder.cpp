@@ -58,8 +58,11 @@ void Builder::in_probe_context(const std::function<void()>& draw) {
 
 void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Builder& helper) {
   std::atomic<size_t> next{0};
-  auto take_jobs = [&] {
-    for (size_t i = next++; i < jobs.size(); i = next++) jobs[i]();
+  auto take_jobs = [&](size_t* took = nullptr) {
+    for (size_t i = next++; i < jobs.size(); i = next++) {
+      jobs[i]();
+      if (took) ++*took;
+    }
   };
   if (jobs.size() < 2) {
     take_jobs();
@@ -78,7 +81,7 @@ void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Bui
     current = {helper.context_, helper.probe_};
     glfwMakeContextCurrent(helper.context_);
     try {
-      for (size_t i = next++; i < jobs.size(); i = next++, ++beside_took) jobs[i]();
+      take_jobs(&beside_took);
     } catch (...) {
       beside_failed = std::current_exception();
     }
