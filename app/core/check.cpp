@@ -383,13 +383,16 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, int final_lin
   // levels deep, would otherwise be walked once per path.
   std::map<std::string_view, std::vector<std::string_view>, std::less<>> named_by;  // a macro -> those naming it
   std::vector<std::string_view> spelling;
-  for (const auto& [name, define] : defines)
-    lexing::any_word(define.body, [&](size_t begin, size_t end) {
-      const std::string_view word = std::string_view(define.body).substr(begin, end - begin);
+  for (const auto& entry : defines) {
+    const std::string& name = entry.first;  // named, not bound: clang 14 captures no structured binding
+    const std::string& body = entry.second.body;
+    lexing::any_word(body, [&](size_t begin, size_t end) {
+      const std::string_view word = std::string_view(body).substr(begin, end - begin);
       if (word == token) spelling.push_back(name);
       else if (word != name && defines.find(word) != defines.end()) named_by[word].push_back(name);
       return false;
     });
+  }
   std::set<std::string_view, std::less<>> spells(spelling.begin(), spelling.end());
   while (!spelling.empty()) {
     const std::string_view name = spelling.back();
