@@ -174,20 +174,19 @@ int column_in_line(const std::string& message, const std::string& line_text) {
   return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
 }
 
-// The final text's first line (1-based) and column that name `name` as a
-// word outside a comment; with `call`, only where a '(' follows: a
+// The first line (1-based) and column of `code`, the final text without its
+// comments, that name `name` as a word; with `call`, only where a '(' follows: a
 // function's prototype or its first call. The place to show for what the
 // linker's log names with no line: a function with no body, an input.
-std::optional<std::pair<int, int>> first_mention(const std::string& name, const Source& source, bool call) {
+std::optional<std::pair<int, int>> first_mention(const std::string& name, std::string_view code, bool call) {
   if (name.empty()) return std::nullopt;
-  std::istringstream code(lexing::strip_comments(source.text));
-  int number = 0;
-  for (std::string line; std::getline(code, line);) {
-    ++number;
-    if (call && !lexing::has_call(line, name)) continue;
-    if (const auto at = lexing::find_word(line, name)) return std::pair{number, static_cast<int>(*at) + 1};
-  }
-  return std::nullopt;
+  std::optional<std::pair<int, int>> found;
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
+    if (call && !lexing::has_call(line, name)) return true;
+    if (const auto at = lexing::find_word(line, name)) found = std::pair{number, static_cast<int>(*at) + 1};
+    return !found;
+  });
+  return found;
 }
 
 // The input a link error finds nothing to feed ("fragment shader input
@@ -215,21 +214,18 @@ struct LargestUniform {
   std::string name;
   long long components = 0;
 };
-std::optional<LargestUniform> largest_uniform(const Source& source) {
+std::optional<LargestUniform> largest_uniform(const Source& source, std::string_view code) {
   std::optional<LargestUniform> largest;
-  std::istringstream code(lexing::strip_comments(source.text));
-  int number = 0;
-  for (std::string line; std::getline(code, line);) {
-    ++number;
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
     std::vector<std::string_view> words;
     lexing::any_word(line, [&](size_t begin, size_t end) {
-      words.push_back(std::string_view(line).substr(begin, end - begin));
+      words.push_back(line.substr(begin, end - begin));
       return words.size() >= 4;
     });
-    if (words.size() < 3 || words[0] != "uniform" || source.locate(number).first.empty()) continue;
+    if (words.size() < 3 || words[0] != "uniform" || source.locate(number).first.empty()) return true;
     const size_t type = lexing::is_precision(words[1]) ? 2 : 1;
     const std::optional<int> known = lexing::components_of(words[type]);
-    if (!known || type + 1 >= words.size()) continue;
+    if (!known || type + 1 >= words.size()) return true;
     const std::string_view name = words[type + 1];
     // Sizes and their product stop at 2^40, far past any driver's limit, so
     // that `u[99999999999][99999999999]` cannot overflow.
@@ -248,7 +244,8 @@ std::optional<LargestUniform> largest_uniform(const Source& source) {
     }
     if (!largest || components > largest->components)
       largest = LargestUniform{number, static_cast<int>(name.data() - line.data()) + 1, std::string(name), components};
-  }
+    return true;
+  });
   return largest;
 }
 
@@ -282,25 +279,25 @@ struct HostLineCause {
   int final_line = 0, column = 0;
   std::string message;
 };
-std::optional<HostLineCause> host_line_cause(const Source& source, int final_line, const std::string& message) {
+std::optional<HostLineCause> host_line_cause(const Source& source, std::string_view code, int final_line,
+                                             const std::string& message) {
   for (const auto& [name, parameters] : kEntryPoints)
     if (message == "'" + std::string(name) + "' : no matching overloaded function found")
-      if (const auto at = first_mention(name, source, true); at && !source.locate(at->first).first.empty())
+      if (const auto at = first_mention(name, code, true); at && !source.locate(at->first).first.empty())
         return HostLineCause{at->first, at->second,
                              "'" + std::string(name) + "' : the host calls " + name + parameters +
                                  ", and no " + name + " takes those parameters"};
   const std::string host_line = source.final_line_text(final_line);
   std::optional<HostLineCause> cause;
-  std::istringstream code(lexing::strip_comments(source.text));
-  int number = 0;
-  for (std::string line; number + 1 < final_line && std::getline(code, line);) {
-    ++number;
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
+    if (number >= final_line) return false;
     const std::optional<std::string_view> name = lexing::defined_macro(line);
-    if (!name || !lexing::has_word(host_line, *name) || source.locate(number).first.empty()) continue;
+    if (!name || !lexing::has_word(host_line, *name) || source.locate(number).first.empty()) return true;
     cause = HostLineCause{number, static_cast<int>(name->data() - line.data()) + 1,
                           "the scene's #define " + std::string(*name) +
                               " changes the code the host adds around the scene: " + message};
-  }
+    return true;
+  });
   return cause;
 }
 
@@ -308,12 +305,11 @@ std::optional<HostLineCause> host_line_cause(const Source& source, int final_lin
 // glslang names the line where the call ends. The final text's line and
 // column of the one scalar, vector or matrix constructor whose call, begun
 // on a line above, closes on this one; nullopt where none or several do.
-std::optional<std::pair<int, int>> constructor_closed_on(const Source& source, int final_line) {
-  const std::string code = lexing::strip_comments(source.text);
+std::optional<std::pair<int, int>> constructor_closed_on(std::string_view code, int final_line) {
   size_t line_start = 0;
   for (int number = 1; number < final_line; ++number) {
     const size_t newline = code.find('\n', line_start);
-    if (newline == std::string::npos) return std::nullopt;
+    if (newline == std::string_view::npos) return std::nullopt;
     line_start = newline + 1;
   }
   const size_t line_end = std::min(code.find('\n', line_start), code.size());
@@ -334,14 +330,14 @@ std::optional<std::pair<int, int>> constructor_closed_on(const Source& source, i
       else if (code[open] == ')') ++nesting;
       else if (code[open] == '(' && nesting-- == 0) break;
     }
-    if (open == std::string::npos || line_start - open >= kMostBytesBack) continue;
+    if (open == std::string_view::npos || line_start - open >= kMostBytesBack) continue;
     size_t word_end = open;
     while (word_end > 0 && lexing::is_blank(code[word_end - 1])) --word_end;
     size_t word_start = word_end;
     while (word_start > 0 && lexing::is_word_char(code[word_start - 1])) --word_start;
-    if (!lexing::components_of(std::string_view(code).substr(word_start, word_end - word_start))) continue;
+    if (!lexing::components_of(code.substr(word_start, word_end - word_start))) continue;
     const size_t its_line = code.rfind('\n', word_start);
-    found = {final_line - lines_up, static_cast<int>(word_start - (its_line == std::string::npos ? 0 : its_line + 1)) + 1};
+    found = {final_line - lines_up, static_cast<int>(word_start - (its_line == std::string_view::npos ? 0 : its_line + 1)) + 1};
     if (++constructors > 1) return std::nullopt;
   }
   return found;
@@ -356,7 +352,8 @@ struct MacroExpansion {
   int column = 0;
   std::string note;
 };
-std::optional<MacroExpansion> macro_spelling(const Source& source, int final_line, const std::string& message) {
+std::optional<MacroExpansion> macro_spelling(const Source& source, std::string_view code, int final_line,
+                                             const std::string& message) {
   const size_t close = message[0] == '\'' ? message.find('\'', 1) : std::string::npos;
   if (close == std::string::npos || !lexing::is_name(std::string_view(message).substr(1, close - 1))) return std::nullopt;
   const std::string_view token = std::string_view(message).substr(1, close - 1);
@@ -365,18 +362,21 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, int final_lin
     std::string body;  // its parameters and replacement, continued lines and all
   };
   std::map<std::string, Define, std::less<>> defines;
-  std::string line_text;  // at the loop's end, the error's line
-  std::istringstream code(lexing::strip_comments(source.text));
+  std::string_view line_text;  // at the walk's end, the error's line
   Define* continued = nullptr;
-  for (int number = 1; std::getline(code, line_text) && number < final_line; ++number) {
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
+    line_text = line;
+    if (number >= final_line) return false;
     if (continued) {
-      continued->body += " " + line_text;
-    } else if (const auto name = lexing::defined_macro(line_text)) {
-      const size_t at = static_cast<size_t>(name->data() - line_text.data());
-      continued = &(defines[std::string(*name)] = {number, static_cast<int>(at) + 1, line_text.substr(at + name->size())});
+      continued->body += " ";
+      continued->body += line;
+    } else if (const auto name = lexing::defined_macro(line)) {
+      const size_t at = static_cast<size_t>(name->data() - line.data());
+      continued = &(defines[std::string(*name)] = {number, static_cast<int>(at) + 1, std::string(line.substr(at + name->size()))});
     }
     if (continued && (continued->body.empty() || continued->body.back() != '\\')) continued = nullptr;
-  }
+    return true;
+  });
   // The macros whose expansion spells the token: those whose body does,
   // then, back along the uses, those whose body names one of them. Each
   // body is read once: macros that name others many times over, many
@@ -404,7 +404,7 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, int final_lin
   std::optional<std::pair<size_t, std::string_view>> cause;  // the call's place and the macro
   int causes = 0;
   lexing::any_word(line_text, [&](size_t begin, size_t end) {
-    const std::string_view word = std::string_view(line_text).substr(begin, end - begin);
+    const std::string_view word = line_text.substr(begin, end - begin);
     if (spells.count(word) && (!cause || cause->second != word)) cause = {begin, word}, ++causes;
     return causes > 1;
   });
@@ -417,13 +417,15 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, int final_lin
                             std::to_string(line) + ":" + std::to_string(define.column) + ")"};
 }
 
-Diagnostic locate(const Source& source, Severity severity, int final_line, int column, std::string message) {
+// `code` is the final text without its comments, for an error in the host's lines.
+Diagnostic locate(const Source& source, std::string_view code, Severity severity, int final_line, int column,
+                  std::string message) {
   Diagnostic d;
   d.severity = severity;
   auto [path, line] = source.locate(final_line);
   if (path.empty()) {
     // A line the host added (wrapper or prelude): the cause is in the scene.
-    if (const auto cause = host_line_cause(source, final_line, message)) {
+    if (const auto cause = host_line_cause(source, code, final_line, message)) {
       auto [cause_path, cause_line] = source.locate(cause->final_line);
       d.path = cause_path;
       d.line = cause_line;
@@ -506,13 +508,13 @@ Diagnostics validate(const Source& source, std::string* active, const std::strin
   // The GL driver recurses over the same tree on the thread that draws, and
   // Mesa overflows 8 MiB near 15,000 levels: what it may not take is refused.
   if (depth > kMaxTreeDepth)
-    out.push_back(locate(source, Severity::Error, deepest_line, 0,
+    out.push_back(locate(source, lexing::strip_comments(source.text), Severity::Error, deepest_line, 0,
                          "an expression nested " + std::to_string(depth) + " levels deep; at most " +
                              std::to_string(kMaxTreeDepth) + " are allowed (the GL driver's compiler recurses on each)"));
   // The driver builds such a tree itself from single-use variables and
   // inlined calls.
   else if (chain > kMaxChainDepth)
-    out.push_back(locate(source, Severity::Error, chain_line, 0,
+    out.push_back(locate(source, lexing::strip_comments(source.text), Severity::Error, chain_line, 0,
                          "a value computed " + std::to_string(chain) +
                              " operations deep, through variables and calls; at most " + std::to_string(kMaxChainDepth) +
                              " are allowed (the GL driver inlines the calls, puts each expression in place of "
@@ -617,6 +619,9 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
   // glslang ends its input at an error when it runs as it does by default:
   // what follows ("compilation terminated", a missing #endif) is its echo.
   const bool stopped_at_error = log.find(": '' : compilation terminated") != std::string::npos;
+  // The final text without its comments, which the searches for an error's
+  // cause read: made once, at the first line of the log.
+  const std::string code = log.empty() ? std::string() : lexing::strip_comments(source.text);
   std::istringstream in(log);
   std::string text;
   while (std::getline(in, text)) {
@@ -658,16 +663,16 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           const int col = given_column ? *given_column : column_in_line(message, source.final_line_text(*final_line));
           std::optional<LeftOpen> left_open;
           if (missing_endif) {
-            left_open = conditional_left_open(source);
+            left_open = conditional_left_open(code);
           } else if (*severity == Severity::Error) {
             // An earlier error may have misled the brace count; a syntax
             // error is the last glslang's parser names.
-            if (!after_error) left_open = brace_left_open_before(source, *final_line);
-            if (!left_open) left_open = declaration_left_open_before(source, *final_line, col, message);
+            if (!after_error) left_open = brace_left_open_before(source, code, *final_line);
+            if (!left_open) left_open = declaration_left_open_before(source, code, *final_line, col, message);
           }
           if (left_open) {
             out.push_back(
-                locate(source, *severity, left_open->final_line, left_open->column, plain_words(left_open->message)));
+                locate(source, code, *severity, left_open->final_line, left_open->column, plain_words(left_open->message)));
             said_left_open = true;
             last_error = out.size() - 1;
             continue;
@@ -675,14 +680,14 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           std::string said = plain_words(message);
           int place_line = *final_line, place = col;
           if (col == 0) {
-            if (const auto expansion = macro_spelling(source, *final_line, said)) {
+            if (const auto expansion = macro_spelling(source, code, *final_line, said)) {
               place = expansion->column;
               said += expansion->note;
             } else if (message.starts_with("'constructor' :")) {
-              if (const auto call = constructor_closed_on(source, *final_line)) std::tie(place_line, place) = *call;
+              if (const auto call = constructor_closed_on(code, *final_line)) std::tie(place_line, place) = *call;
             }
           }
-          Diagnostic d = locate(source, *severity, place_line, place, std::move(said));
+          Diagnostic d = locate(source, code, *severity, place_line, place, std::move(said));
           const bool in_host_code = source.locate(*final_line).first.empty();
           if (*severity == Severity::Error) {
             if (after_error && follows_earlier_error(out[*last_error], d, in_host_code, said_host_code_error)) continue;
@@ -708,7 +713,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       const auto column = final_line && line.take("(") ? line.number() : std::nullopt;
       const auto severity = column && line.take("): ") ? line.severity("error: ", "warning: ") : std::nullopt;
       if (severity) {
-        out.push_back(locate(source, *severity, *final_line, *column, line.rest()));
+        out.push_back(locate(source, code, *severity, *final_line, *column, line.rest()));
         continue;
       }
     }
@@ -719,17 +724,17 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
     LogLine line(text);
     if (const auto severity = line.severity("error: ", "warning: ")) d.severity = *severity;
     d.message = line.rest();
-    if (const auto at = first_mention(unresolved_function(d.message), source, true)) {
+    if (const auto at = first_mention(unresolved_function(d.message), code, true)) {
       const Severity severity = d.severity;
       std::string message = std::move(d.message);
-      d = locate(source, severity, at->first, at->second, std::move(message));
+      d = locate(source, code, severity, at->first, at->second, std::move(message));
     } else if (uniforms_past_limit(d.message)) {
       // Mesa says so in up to three ways, one glued to the next: one error is the news.
       if (said_uniforms_past_limit) continue;
       said_uniforms_past_limit = true;
       const std::string reason = d.message.substr(0, d.message.find("error: "));
-      if (const auto largest = largest_uniform(source))
-        d = locate(source, d.severity, largest->line, largest->column,
+      if (const auto largest = largest_uniform(source, code))
+        d = locate(source, code, d.severity, largest->line, largest->column,
                    "'" + largest->name + "' : its " + std::to_string(largest->components) +
                        " components take the fragment shader's uniforms past what the driver allows (" + reason + ")");
     } else if (const std::string input = unfed_input(d.message); !input.empty()) {
@@ -740,7 +745,7 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
           (input == "v_texcoord" ? "(it supplies glslViewer's v_texcoord declared on a line of its own: "
                                    "`varying vec2 v_texcoord;`)"
                                  : "(glslViewer's v_texcoord is the one input it supplies)");
-      if (const auto at = first_mention(input, source, false)) d = locate(source, severity, at->first, at->second, message);
+      if (const auto at = first_mention(input, code, false)) d = locate(source, code, severity, at->first, at->second, message);
       else d.message = message;
     }
     out.push_back(std::move(d));

@@ -11,18 +11,6 @@
 namespace rm {
 namespace {
 
-// Calls visit(line, number) for each line of `code` (1-based numbers) until
-// it returns false. Lines are views: a text of 10 million lines is not copied.
-template <typename Visit>
-void for_each_line(std::string_view code, Visit visit) {
-  int number = 0;
-  for (size_t at = 0; at <= code.size();) {
-    const size_t end = std::min(code.find('\n', at), code.size());
-    if (!visit(code.substr(at, end - at), ++number)) return;
-    at = end + 1;
-  }
-}
-
 bool opens_conditional(std::string_view name) { return name == "if" || name == "ifdef" || name == "ifndef"; }
 
 int file_of(const Source& source, int final_line) {
@@ -46,9 +34,9 @@ std::string token_named(std::string_view grammar_name, std::string_view code) {
 
 }  // namespace
 
-std::optional<LeftOpen> conditional_left_open(const Source& source) {
+std::optional<LeftOpen> conditional_left_open(std::string_view code) {
   std::vector<LeftOpen> open;
-  for_each_line(lexing::strip_comments(source.text), [&](std::string_view line, int number) {
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
     if (const auto d = lexing::directive(line)) {
       if (opens_conditional(d->name))
         open.push_back({number, static_cast<int>(d->hash) + 1, "unterminated #" + std::string(d->name)});
@@ -61,7 +49,7 @@ std::optional<LeftOpen> conditional_left_open(const Source& source) {
   return open.back();
 }
 
-std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_line) {
+std::optional<LeftOpen> brace_left_open_before(const Source& source, std::string_view code, int error_line) {
   struct FileState {
     std::vector<LeftOpen> open;
     int last_line = 0;
@@ -72,7 +60,7 @@ std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_l
   for (size_t i = 0; i < source.line_map.size(); ++i)
     if (source.line_map[i].file >= 0) files[source.line_map[i].file].last_line = static_cast<int>(i) + 1;
   std::vector<bool> in_later_branch;  // per open conditional
-  for_each_line(lexing::strip_comments(source.text), [&](std::string_view line, int number) {
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
     if (number >= error_line) return false;
     if (const auto d = lexing::directive(line)) {
       if (opens_conditional(d->name)) in_later_branch.push_back(false);
@@ -97,15 +85,14 @@ std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_l
   return first->open.back();
 }
 
-std::optional<LeftOpen> declaration_left_open_before(const Source& source, int error_line, int column,
-                                                     const std::string& message) {
+std::optional<LeftOpen> declaration_left_open_before(const Source& source, std::string_view code, int error_line,
+                                                     int column, const std::string& message) {
   const std::string_view unexpected = "syntax error, unexpected ";
   const size_t at = message.find(unexpected);
   const size_t token_end = at == std::string::npos ? at : message.find_first_of(", ", at + unexpected.size());
   if (token_end == std::string::npos) return std::nullopt;
-  const std::string code = lexing::strip_comments(source.text);
   size_t failing_at = std::string::npos;  // where the error's line starts
-  for_each_line(code, [&](std::string_view line, int number) {
+  lexing::for_each_line(code, [&](std::string_view line, int number) {
     if (number == error_line) failing_at = static_cast<size_t>(line.data() - code.data());
     return number < error_line;
   });

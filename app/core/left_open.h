@@ -6,6 +6,7 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/source.h"
 
@@ -18,14 +19,17 @@ struct LeftOpen {
   std::string message;
 };
 
+// Each reads `code`, the source's final text with its comments blanked
+// (lexing::strip_comments), which the caller makes once for all its errors.
+
 // For glslang's "missing #endif" at the end of the text: the innermost
 // #if, #ifdef or #ifndef left open ("unterminated #ifdef").
-std::optional<LeftOpen> conditional_left_open(const Source& source);
+std::optional<LeftOpen> conditional_left_open(std::string_view code);
 
 // For an error at `error_line`: the innermost '{' left open by the first of
 // the user's files that ends before it. Of a conditional's branches only the
 // first is counted, since they are alternatives.
-std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_line);
+std::optional<LeftOpen> brace_left_open_before(const Source& source, std::string_view code, int error_line);
 
 // For glslang's "syntax error, unexpected TOKEN" at the first token of
 // `error_line` (found at `column`, 0 if not), or at the end of the text: the
@@ -33,7 +37,7 @@ std::optional<LeftOpen> brace_left_open_before(const Source& source, int error_l
 // none), where the ';' or ')' goes. In the same file, with no directive
 // between, the end of the line above, as gcc and clang name a missing ';':
 // "syntax error, expecting COMMA or SEMICOLON before RIGHT_BRACE".
-std::optional<LeftOpen> declaration_left_open_before(const Source& source, int error_line, int column,
-                                                     const std::string& message);
+std::optional<LeftOpen> declaration_left_open_before(const Source& source, std::string_view code, int error_line,
+                                                     int column, const std::string& message);
 
 }  // namespace rm

@@ -3,6 +3,7 @@
 // std::regex: libstdc++'s regex matcher recurses once per character, so a
 // line of 100,000 blanks overflows the stack.
 #pragma once
+#include <algorithm>
 #include <optional>
 #include <string_view>
 
@@ -70,6 +71,18 @@ bool any_word(std::string_view text, Visit visit) {
     if (visit(begin, i)) return true;
   }
   return false;
+}
+
+// Calls visit(line, number) for each line of `text` (1-based numbers) until
+// it returns false. Lines are views: a text of 10 million lines is not copied.
+template <typename Visit>
+void for_each_line(std::string_view text, Visit visit) {
+  int number = 0;
+  for (size_t at = 0; at <= text.size();) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    if (!visit(text.substr(at, end - at), ++number)) return;
+    at = end + 1;
+  }
 }
 
 // Where `text` first names `word` as a whole word.
