@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <map>
 #include <set>
 #include <sstream>
@@ -382,6 +383,7 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, std::string_v
   // body is read once: macros that name others many times over, many
   // levels deep, would otherwise be walked once per path.
   std::map<std::string_view, std::vector<std::string_view>, std::less<>> named_by;  // a macro -> those naming it
+  std::map<std::string_view, std::vector<std::string_view>, std::less<>> names;     // a macro -> those it names
   std::vector<std::string_view> spelling;
   for (const auto& entry : defines) {
     const std::string& name = entry.first;  // named, not bound: clang 14 captures no structured binding
@@ -389,10 +391,12 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, std::string_v
     lexing::any_word(body, [&](size_t begin, size_t end) {
       const std::string_view word = std::string_view(body).substr(begin, end - begin);
       if (word == token) spelling.push_back(name);
-      else if (word != name && defines.find(word) != defines.end()) named_by[word].push_back(name);
+      else if (const auto named = defines.find(word); word != name && named != defines.end())
+        named_by[named->first].push_back(name), names[name].push_back(named->first);
       return false;
     });
   }
+  const std::set<std::string_view, std::less<>> spells_itself(spelling.begin(), spelling.end());
   std::set<std::string_view, std::less<>> spells(spelling.begin(), spelling.end());
   while (!spelling.empty()) {
     const std::string_view name = spelling.back();
@@ -409,12 +413,37 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, std::string_v
     return causes > 1;
   });
   if (causes != 1) return std::nullopt;
-  const Define& define = defines.find(cause->second)->second;
-  const auto [path, line] = source.locate(define.final_line);
-  if (path.empty()) return std::nullopt;  // the host's own macros are not the user's to read
-  return MacroExpansion{static_cast<int>(cause->first) + 1,
-                        " (in expansion of macro '" + std::string(cause->second) + "', defined at " + path + ":" +
-                            std::to_string(line) + ":" + std::to_string(define.column) + ")"};
+  // Where a macro is defined, as the note says it; "" for the host's own.
+  auto defined_at = [&](std::string_view name) {
+    const Define& define = defines.find(name)->second;
+    const auto [path, line] = source.locate(define.final_line);
+    return path.empty() ? path : path + ":" + std::to_string(line) + ":" + std::to_string(define.column);
+  };
+  const std::string called_at = defined_at(cause->second);
+  if (called_at.empty()) return std::nullopt;  // the host's own macros are not the user's to read
+  std::string note = " (in expansion of macro '" + std::string(cause->second) + "', defined at " + called_at;
+  // The macro that spells the token itself, where the called one does not,
+  // nearest along the macros it calls: the place to fix, which gcc names in
+  // a note for each level. Here the levels between are counted.
+  std::map<std::string_view, std::string_view> came_from;
+  std::deque<std::string_view> queue{cause->second};
+  std::string_view speller;
+  while (!queue.empty() && speller.empty()) {
+    const std::string_view name = queue.front();
+    queue.pop_front();
+    if (spells_itself.count(name)) speller = name;
+    else if (const auto called = names.find(name); called != names.end())
+      for (const std::string_view next : called->second)
+        if (spells.count(next) && next != cause->second && came_from.emplace(next, name).second) queue.push_back(next);
+  }
+  int between = 0;
+  for (std::string_view at = speller; !at.empty() && at != cause->second; at = came_from[at]) ++between;
+  if (const std::string spelled_at = between > 0 ? defined_at(speller) : ""; !spelled_at.empty()) {
+    note += between == 1 ? ", through macro '"
+                         : ", through " + std::to_string(between - 1) + (between == 2 ? " more macro" : " more macros") + " to '";
+    note += std::string(speller) + "', defined at " + spelled_at;
+  }
+  return MacroExpansion{static_cast<int>(cause->first) + 1, note + ")"};
 }
 
 // `code` is the final text without its comments, for an error in the host's lines.

@@ -194,7 +194,13 @@ TEST(Check, AnErrorInAMacrosExpansionIsNamedAtItsCall) {
   EXPECT_EQ(diagnostics_of_scene(dir, "#include \"lib.glsl\"\n"
                                       "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(F(1.0));\n}\n"),
             scene + ":3:12: error: 'nothere' : undeclared identifier (in expansion of macro 'F', defined at " + lib +
-                ":2:9)\n");
+                ":2:9, through macro 'G', defined at " + lib + ":1:9)\n");
+  // Levels between the macro called and the one that spells the token are
+  // counted; of two ways down, the shorter is taken.
+  EXPECT_EQ(diagnostics_of_scene(dir, "#define D nothere\n#define C D\n#define B C\n#define A (B + C)\n"
+                                      "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(A);\n}\n"),
+            scene + ":6:12: error: 'nothere' : undeclared identifier (in expansion of macro 'A', defined at " + scene +
+                ":4:9, through 1 more macro to 'D', defined at " + scene + ":1:9)\n");
   EXPECT_EQ(diagnostics_of_scene(dir, "#define A nothere\n#define B nothere\n"
                                       "void mainImage(out vec4 c, in vec2 f) {\n  c = vec4(A + B);\n}\n"),
             scene + ":4: error: 'nothere' : undeclared identifier\n");
