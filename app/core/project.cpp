@@ -234,13 +234,17 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
     return ReloadStatus::NeedsCompile;
   }
   if (!changed && same_passes()) return ReloadStatus::Unchanged;
-  // Each pass's link and warm-up, as a job of its own. Taken in the order
-  // the passes are drawn: Mesa writes the code a warm-up generates to its
-  // cache on a thread of its own, and the window finds it there only once
-  // written, so the pass it draws last is warmed last.
+  // Each pass's link and warm-up, as a job of its own, the largest first:
+  // the runner's threads take them in turn, and a long job taken last would
+  // leave one thread building it alone. The size of the active code stands
+  // for the compile's cost. (Each warm-up also draws in a probe context,
+  // which waits for Mesa's cache to hold its code, so the window finds every
+  // pass's code whatever the order.)
   std::vector<Scene*> scenes;
   for (const fs::path& file : draw_order(reached, walk.cube_size))
     if (Scene& scene = scene_for(file); scene.built_anew()) scenes.push_back(&scene);
+  std::stable_sort(scenes.begin(), scenes.end(),
+                   [](const Scene* a, const Scene* b) { return a->latest_active().size() > b->latest_active().size(); });
   std::vector<char> linked(scenes.size(), 1);  // not vector<bool>: its jobs write on several threads
   std::vector<std::function<void()>> jobs;
   for (size_t i = 0; i < scenes.size(); ++i)

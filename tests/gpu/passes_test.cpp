@@ -422,6 +422,28 @@ TEST_F(Passes, ThePassesLinkAsJobsOnTwoThreadsAndAnyRejectedFailsTheSave) {
   eglDestroyContext(display, beside);
 }
 
+// The runner's threads take the jobs in turn, so a long one taken last
+// would leave one thread to build it alone: the largest pass comes first,
+// whatever the order the passes are drawn in.
+TEST_F(Passes, TheLargestPassIsTheFirstJob) {
+  std::string large_body;
+  for (int i = 0; i < 40; ++i) large_body += "  c += vec4(sin(f.x * " + std::to_string(i) + ".5));\n";
+  write_file(dir_ / "buffer_a.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(2.0); }\n");
+  write_file(dir_ / "buffer_b.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(3.0); }\n");
+  write_file(dir_ / "image.frag", "#pragma channel0 \"buffer_a.frag\"\n#pragma channel1 \"buffer_b.frag\"\n"
+                                  "void mainImage(out vec4 c, in vec2 f) {\n  c = texture(iChannel0, f) + texture(iChannel1, f);\n" +
+                                      large_body + "}\n");
+  std::vector<std::string> warmed;
+  auto warm = [&](const fs::path& pass, const Program&, const Source&) { warmed.push_back(pass.filename().string()); };
+  auto in_order = [](const std::vector<std::function<void()>>& jobs) {
+    for (const auto& job : jobs) job();
+  };
+  project_ = std::make_unique<Project>(dir_ / "image.frag", SourceOptions{});
+  ASSERT_EQ(project_->prepare(warm, {}, in_order), ReloadStatus::Swapped) << join(project_->diagnostics());
+  EXPECT_EQ(warmed, (std::vector<std::string>{"image.frag", "buffer_a.frag", "buffer_b.frag"}))
+      << "the image, drawn last, is the largest";
+}
+
 // Each with the size it drew at, which the HUD shows beside its time: a
 // buffer's own size, a cube's face, the picture's.
 TEST_F(Passes, EachPassIsTimedInDrawOrderWhenAsked) {
