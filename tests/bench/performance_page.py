@@ -22,7 +22,7 @@ import sys
 import tempfile
 
 TEXT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "performance")
-SECTIONS = ["header", "reload", "instructions", "startup", "passes", "budget", "video", "interface"]
+SECTIONS = ["header", "reload", "firstload", "instructions", "startup", "passes", "budget", "video", "interface"]
 PLACEHOLDER = re.compile(r"\{\{(\w+)\}\}")
 
 
