@@ -29,15 +29,13 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e"))
 from harness import wait_for  # noqa: E402
+from reload_examples import FIRST_DRAW, PICTURE, PRESENTED  # noqa: E402  the -v lines it reads too
 
 RUNS = 3
 BUILDING = re.compile(r"building generation 1 at (\d+)")
 BUILT = re.compile(r"reload ok generation 1 \(rebuilt:([^;]*); preprocess ([0-9.e-]+) ms, glslang ([0-9.e-]+) ms, "
                    r"driver compile\+link ([0-9.e-]+) ms, warm-up ([0-9.e-]+) ms"
                    r"(?:, the last two summed over (\d+) threads)?\) at (\d+)")
-FIRST_DRAW = re.compile(r"first draw of generation 1: ")
-PICTURE = re.compile(r"picture \d+x\d+ scale [0-9.e-]+ in \d+ tiles?, [0-9.e-]+ ms, done at (\d+)")
-PRESENTED = re.compile(r"presented generation 1 at (\d+)")
 
 
 def shader_of(path):
@@ -65,12 +63,13 @@ def first_load(binary, project, work):
 
     def stages():
         text = open(err).read()
-        building, built, present = BUILDING.search(text), BUILT.search(text), PRESENTED.search(text)
-        first = FIRST_DRAW.search(text)
+        building, built = BUILDING.search(text), BUILT.search(text)
+        present = next((m for m in PRESENTED.finditer(text) if m.group(1) == "1"), None)
+        first = next((m for m in FIRST_DRAW.finditer(text) if m.group(1) == "1"), None)
         done = PICTURE.search(text, first.end()) if first else None
         if not (building and built and present and done):
             return None
-        whole = max(int(done.group(1)), int(present.group(1))) / 1e9
+        whole = max(int(done.group(1)), int(present.group(2))) / 1e9
         return {"passes": len(built.group(1).split()), "threads": int(built.group(6) or 1),
                 "build": (int(built.group(7)) - int(building.group(1))) / 1e6,
                 "preprocess": float(built.group(2)), "glslang": float(built.group(3)),
