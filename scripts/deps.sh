@@ -7,6 +7,7 @@ set -euo pipefail
 build_packages=(
   cmake ninja-build g++ pkg-config
   libglfw3-dev libglm-dev glslang-dev glslang-tools libopenimageio-dev libegl-dev libepoxy-dev
+  libx11-dev  # GLX contexts for the window's builders
   libcli11-dev libgtest-dev libgmock-dev nlohmann-json3-dev libimgui-dev
   libfontconfig-dev fonts-dejavu-core  # the interface's letters past ASCII
   libfarmhash-dev  # a take's fingerprints of its sources

@@ -17,8 +17,8 @@ namespace {
 // The contexts of the build that runs on this thread: its builder's, or
 // those run_jobs() lent it.
 struct Contexts {
-  GLFWwindow* context = nullptr;
-  GLFWwindow* probe = nullptr;
+  const SharedContext* context = nullptr;
+  const SharedContext* probe = nullptr;
 };
 thread_local Contexts current;
 
@@ -26,18 +26,13 @@ thread_local Contexts current;
 
 void Builder::open(GLFWwindow* window) {
   if (context_) return;
-  // The window's context hints (version, profile) still hold.
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  context_ = glfwCreateWindow(1, 1, "raymarching builder", nullptr, window);
-  if (context_) probe_ = glfwCreateWindow(1, 1, "raymarching builder probe", nullptr, window);
-  glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+  context_ = SharedContext::make(window, "raymarching builder");
+  if (context_) probe_ = SharedContext::make(window, "raymarching builder probe");
   open_ = context_ != nullptr;
 }
 
 Builder::~Builder() {
   if (thread_.joinable()) thread_.join();
-  if (probe_) glfwDestroyWindow(probe_);
-  if (context_) glfwDestroyWindow(context_);
 }
 
 // llvmpipe generates a program's machine code per context, and the window's
@@ -51,9 +46,9 @@ Builder::~Builder() {
 // thread, which takes long enough for the first entry to be written.
 void Builder::in_probe_context(const std::function<void()>& draw) {
   if (!current.probe) return;
-  glfwMakeContextCurrent(current.probe);
+  current.probe->make_current();
   draw();
-  glfwMakeContextCurrent(current.context);
+  current.context->make_current();
 }
 
 void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Builder& helper) {
@@ -78,15 +73,15 @@ void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Bui
     while ((!helper.open_ || helper.running()) && next < jobs.size())
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     if (next >= jobs.size()) return;
-    current = {helper.context_, helper.probe_};
-    glfwMakeContextCurrent(helper.context_);
+    current = {helper.context_.get(), helper.probe_.get()};
+    current.context->make_current();
     try {
       take_jobs(&beside_took);
     } catch (...) {
       beside_failed = std::current_exception();
     }
     if (beside_took > 0) glFinish();  // what it made complete for the window's context, as start()'s is
-    glfwMakeContextCurrent(nullptr);
+    current.context->release();
   });
   try {
     take_jobs();
@@ -104,8 +99,8 @@ void Builder::start(std::function<ReloadStatus()> build) {
   done_ = false;
   cancel_ = false;
   thread_ = DeepStackThread([this, build = std::move(build)] {
-    current = {context_, probe_};
-    glfwMakeContextCurrent(context_);
+    current = {context_.get(), probe_.get()};
+    current.context->make_current();
     try {
       status_ = build();
     } catch (const std::bad_alloc&) {  // uncaught on this thread, it would end the window
@@ -117,7 +112,7 @@ void Builder::start(std::function<ReloadStatus()> build) {
     // rasterizer, so glFinish also waits for the window's tile under way
     // (seconds of a heavy shader's), which a build that swaps nothing need not.
     if (status_ == ReloadStatus::Swapped) glFinish();
-    glfwMakeContextCurrent(nullptr);
+    current.context->release();
     done_ = true;
     glfwPostEmptyEvent();
   });

@@ -1,17 +1,19 @@
 // Builder: runs a build (a reload's Project::prepare: the preprocessor,
 // glslang, the driver's compile and link, a warm-up draw; or a background
-// job's) on a thread of its own, in the GL context of a hidden window that
-// shares the window's objects. The window keeps drawing the running program
+// job's) on a thread of its own, in a GL context that shares the window's
+// objects (window/shared_context.h). The window keeps drawing the running program
 // meanwhile, and commits the new one when the build has finished. The
 // window has two: one for saves, one for the builds nobody waits for.
 #pragma once
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/deep_stack.h"
 #include "core/scene.h"
+#include "window/shared_context.h"
 
 struct GLFWwindow;
 
@@ -61,8 +63,7 @@ class Builder {
   int job_threads() const { return job_threads_; }
 
  private:
-  GLFWwindow* context_ = nullptr;
-  GLFWwindow* probe_ = nullptr;
+  std::unique_ptr<SharedContext> context_, probe_;
   std::atomic<bool> open_{false};  // read by another builder's run_jobs()
   int job_threads_ = 1;
   DeepStackThread thread_;  // the driver's compiler recurses on deep shaders
