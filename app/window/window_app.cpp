@@ -114,8 +114,8 @@ class WindowApp {
     // held a window that could not be quit for a minute).
     watcher_->watch({options_.scene});
     load();
-    // Made while the first program builds: its two contexts took about 50
-    // ms, which the first picture waited for when they were made before.
+    // Made while the first program builds: made before it, its two contexts
+    // held the first picture back (50 ms as hidden windows, now about 16).
     background_.open(window_);
     while (!glfwWindowShouldClose(window_) && !quit_) {
       // A picture that cannot change is drawn once: then sleep until an event
