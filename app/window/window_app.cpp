@@ -19,6 +19,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/address_space.h"
 #include "core/capture.h"
 #include "core/channels.h"
 #include "core/frame_budget.h"
@@ -70,6 +71,15 @@ const char* window_keys_help() {
 }
 
 namespace {
+
+// GLFW's errors while the window is being made are held, and the host's one
+// line says the last; once it is made, each is printed as it comes.
+std::string glfw_held_error;
+bool glfw_errors_held = true;
+void on_glfw_error(int, const char* message) {
+  if (glfw_errors_held) glfw_held_error = message;
+  else std::cerr << "raymarching: glfw: " << message << '\n';
+}
 
 bool mesa_cache_disabled() {
   for (const char* name : {"MESA_SHADER_CACHE_DISABLE", "MESA_GLSL_CACHE_DISABLE"}) {
@@ -1428,9 +1438,10 @@ int run_window(const WindowOptions& options) {
   send_cerr_past_shuts();
   // The worker starts while GLFW opens the window and the driver its context.
   GlslangWarmUp glslang(kHostVersionLine);
-  glfwSetErrorCallback([](int, const char* message) { std::cerr << "raymarching: glfw: " << message << '\n'; });
+  glfwSetErrorCallback(on_glfw_error);
   if (!glfwInit()) {
-    std::cerr << "raymarching: error: cannot open a window (no display?); `raymarching render` needs none\n";
+    std::cerr << "raymarching: error: cannot open a window ("
+              << (glfw_held_error.empty() ? "no display?" : glfw_held_error) << "); `raymarching render` needs none\n";
     return kExitUsage;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
@@ -1440,9 +1451,11 @@ int run_window(const WindowOptions& options) {
   GLFWwindow* window = glfwCreateWindow(options.size.x, options.size.y, options.scene.filename().c_str(), nullptr, nullptr);
   if (!window) {
     glfwTerminate();
-    std::cerr << "raymarching: error: cannot create an OpenGL 4.5 core window\n";
+    std::cerr << "raymarching: error: cannot create an OpenGL 4.5 core window"
+              << (glfw_held_error.empty() ? "" : " (" + glfw_held_error + ")") << within_address_space_limit() << '\n';
     return kExitUsage;
   }
+  glfw_errors_held = false;
   glfwMakeContextCurrent(window);
   report_gl_errors();
   if (const auto missing = driver_cannot_draw()) {

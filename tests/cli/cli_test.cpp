@@ -863,6 +863,16 @@ TEST_F(Cli, BadShaderFilesGetOneClearLine) {
   EXPECT_EQ(big_render.status, 0) << big_render.err;
 }
 
+// A window asked for where there is no display (over ssh, say): GLFW's
+// reason and the way out, in the host's one line.
+TEST_F(Cli, AWindowWithNoDisplayIsOneLine) {
+  const test::Outcome r = test::run_binary(good(), "unset DISPLAY WAYLAND_DISPLAY; ");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("raymarching: error: cannot open a window (X11: The DISPLAY environment variable is missing); "
+                        "`raymarching render` needs none", 0), 0u) << r.err;
+}
+
 TEST_F(Cli, ShaderErrorDoesNotTouchAnExistingOutput) {
   write_file(dir_ / "bad.frag", "void mainImage(out vec4 c, in vec2 f) { c = nope; }\n");
   write_file(dir_ / "keep.png", "previous picture");

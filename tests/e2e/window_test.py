@@ -27,7 +27,8 @@ F12 records for `render`; a warning shows in a smaller line until dismissed.
 Idle: a shader that reads no clock is drawn once and then only on input it
 reads; left alone for 4 s it uses under a tenth of the CPU time of an
 animated one, and so does an animated one while paused. With Mesa's shader
-cache off, the window says once what that costs it.
+cache off, the window says once what that costs it. Under an address-space
+limit too small for the driver, the window's failure is one line.
 """
 import math
 import os
@@ -753,6 +754,22 @@ def mesa_cache_off_is_said():
         quit_with(proc, window, "q")
 
 
+def no_room_for_the_driver_is_one_line():
+    """Under an address-space limit too small for the driver, the window
+    cannot be made: the host says so in one line (Mesa's loader adds its
+    own), with GLFW's reason and the limit, and exits with status 2."""
+    work = harness.work_dir("rm-e2e-limit-")
+    scene = os.path.join(work, "limit.frag")
+    with open(scene, "w") as f:
+        f.write(CONSTANT_B)
+    r = subprocess.run(["sh", "-c", 'ulimit -v 300000; exec "$0" "$1"', BINARY, scene],
+                       capture_output=True, text=True, timeout=60)
+    ours = [line for line in r.stderr.splitlines() if line and not line.startswith("libGL error: ")]
+    check("a window with no room for the driver ends with status 2 and one line naming the limit",
+          r.returncode == 2 and len(ours) == 1 and ours[0].startswith("raymarching: error: cannot create an OpenGL")
+          and "(ulimit -v 300000 KiB)" in ours[0], f"status {r.returncode}: {r.stderr[-600:]}")
+
+
 def tweak_at_rest():
     """A number edit of a still: the twin's picture is refined to its
     samples, and the exact program that follows neither draws nor refines
@@ -923,6 +940,7 @@ if __name__ == "__main__":
         error_of_30_kb()
         idle_costs_nothing()
         mesa_cache_off_is_said()
+        no_room_for_the_driver_is_one_line()
     finally:
         status = summary()
     sys.exit(status)
