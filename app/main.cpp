@@ -20,6 +20,7 @@
 #include "commands/import.h"
 #include "commands/render.h"
 #include "commands/window.h"
+#include "core/address_space.h"
 #include "core/deep_stack.h"
 #include "core/diagnostics.h"
 #include "window/window_app.h"
@@ -89,6 +90,9 @@ int run(int argc, char** argv) {
   } catch (const rm::cli::UsageError& e) {
     std::cerr << "raymarching: error: " << e.message << '\n';
     return rm::kExitUsage;
+  } catch (const rm::NoRoomForDriver& e) {
+    std::cerr << "raymarching: error: " << e.what() << '\n';
+    return rm::kExitUsage;
   } catch (const std::bad_alloc&) {  // what the system refuses ends in one line, as a bad path does
     std::cerr << "raymarching: error: out of memory\n";
     return rm::kExitUsage;
@@ -103,6 +107,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rm::fit_malloc_to_address_space_limit();
   // Every command may build a program in the GL driver, whose compiler
   // recurses on a shader's trees, on this thread: give it a deep stack.
   int status = 0;

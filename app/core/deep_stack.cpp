@@ -1,10 +1,20 @@
 #include "core/deep_stack.h"
 
+#include <algorithm>
 #include <optional>
 #include <system_error>
 #include <utility>
 
+#include "core/address_space.h"
+
 namespace rm {
+
+size_t deep_stack_bytes() {
+  constexpr size_t kDefaultStack = size_t{8} << 20;
+  const auto kib = address_space_limit_kib();
+  if (!kib) return kDeepStack;
+  return std::clamp(size_t(*kib / 16) << 10, kDefaultStack, kDeepStack);
+}
 
 DeepStackThread::DeepStackThread(std::function<void()> work, size_t bytes)
     : work_(std::make_unique<std::function<void()>>(std::move(work))) {

@@ -15,12 +15,19 @@ namespace rm {
 
 constexpr size_t kDeepStack = size_t{256} << 20;
 
+// The stack a deep thread asks for: kDeepStack, or under an address-space
+// limit (ulimit -v) a sixteenth of the limit, at least the default 8 MiB.
+// The whole stack counts against the limit, touched or not, and the window
+// runs four at once (its own, a build's two threads, a background build's):
+// at 256 MiB each they left a 1 GB limit too little room for the driver.
+size_t deep_stack_bytes();
+
 // A thread running `work` on a stack of `bytes`, joined as a std::thread is.
 // Where no such stack can be had, it gets the default one.
 class DeepStackThread {
  public:
   DeepStackThread() = default;
-  explicit DeepStackThread(std::function<void()> work, size_t bytes = kDeepStack);
+  explicit DeepStackThread(std::function<void()> work, size_t bytes = deep_stack_bytes());
   DeepStackThread(DeepStackThread&& other) noexcept { *this = std::move(other); }
   DeepStackThread& operator=(DeepStackThread&& other) noexcept;  // only onto one not joinable
   ~DeepStackThread();  // joins one still running
@@ -38,6 +45,6 @@ class DeepStackThread {
 
 // Runs `work` on a thread with a stack of `bytes`, and waits for it; on this
 // thread where no thread can be started.
-void run_with_deep_stack(const std::function<void()>& work, size_t bytes = kDeepStack);
+void run_with_deep_stack(const std::function<void()>& work, size_t bytes = deep_stack_bytes());
 
 }  // namespace rm

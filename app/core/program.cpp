@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/address_space.h"
 #include "core/check.h"
 #include "core/dialect_names.h"
 
@@ -108,6 +109,7 @@ void upload(GLuint program, GLint location, GLenum type, const float* values, in
 }  // namespace
 
 std::optional<Program> Program::build(const Source& source, Diagnostics* diags) {
+  require_room_for_driver();  // Mesa would crash where it runs out
   std::string log;
   gl::Shader fragment = compile(GL_FRAGMENT_SHADER, source.text, &log);
   if (!fragment) {

@@ -252,8 +252,13 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
       if (!scenes[i]->link()) linked[i] = 0;
       else scenes[i]->warm_up(on_built);
     });
-  if (run) run(jobs);
-  else for (const auto& job : jobs) job();
+  try {
+    if (run) run(jobs);
+    else for (const auto& job : jobs) job();
+  } catch (...) {  // no room for the driver (core/address_space.h): nothing half-built stays
+    for (const fs::path& file : reached) scene_for(file).discard();
+    throw;
+  }
   for (Scene* scene : scenes) {
     times_.driver += scene->times().driver;
     times_.warm += scene->times().warm;

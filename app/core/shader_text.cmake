@@ -6,7 +6,8 @@
 # supersampling.cpp comes with the table: it moves gl_FragCoord by a sample's
 # offset; and inputs.cpp: the table records iDate as `render --date` reads it.
 # tweak.cpp lifts a scene's numbers out of its text for the twin; one_line.cpp
-# cuts what an error quotes from the text to a length a line can hold.
+# cuts what an error quotes from the text to a length a line can hold;
+# address_space.cpp: a Program asks it for room before the driver builds.
 # glslang itself runs in the worker, a program of its own
 # (RM_GLSLANG_WORKER_SOURCES): both lists build with the glslang_worker/
 # protocol.
@@ -30,6 +31,7 @@ set(RM_SHADER_TEXT_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/user_uniforms.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tweak.cpp
   ${CMAKE_CURRENT_LIST_DIR}/one_line.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/address_space.cpp
 )
 set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/main.cpp
@@ -38,6 +40,7 @@ set(RM_GLSLANG_WORKER_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/sandbox.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../glslang_worker/protocol.cpp
   ${CMAKE_CURRENT_LIST_DIR}/deep_stack.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/address_space.cpp
 )
 # Where the host finds the worker: <prefix>/libexec/raymarching installed,
 # else where this build put it. Whatever builds glslang_client.cpp takes

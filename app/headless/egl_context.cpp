@@ -24,6 +24,12 @@ EGLContext make_context(EGLDisplay display) {
   EGLConfig config = nullptr;
   EGLint count = 0;
   eglChooseConfig(display, config_attribs, &config, 1, &count);
+  // The driver is mapped by now; Mesa would crash making the context in the
+  // little room a limit may leave (core/address_space.h).
+  if (!room_for_driver()) {
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
   const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                     EGL_NONE};

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "core/address_space.h"
 #include "core/capture.h"
 #include "core/channels.h"
 #include "core/check.h"
@@ -304,6 +305,8 @@ int render_frames(const RenderRequest& req) {
 int render_command(const RenderRequest& req) {
   try {
     return render_frames(req);
+  } catch (const NoRoomForDriver& e) {
+    return fail(e.what(), kExitUsage);
   } catch (const std::bad_alloc&) {
     // The picture is named where it alone is a lot (a channel image that is
     // too much says so where it is read).

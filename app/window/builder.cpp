@@ -2,10 +2,10 @@
 
 #include <chrono>
 #include <exception>
-#include <iostream>
 #include <new>
 #include <thread>
 
+#include "core/address_space.h"
 #include "core/gl.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -96,6 +96,7 @@ void Builder::run_jobs(const std::vector<std::function<void()>>& jobs, const Bui
 
 void Builder::start(std::function<ReloadStatus()> build) {
   job_threads_ = 1;
+  error_.clear();
   done_ = false;
   cancel_ = false;
   thread_ = DeepStackThread([this, build = std::move(build)] {
@@ -103,8 +104,11 @@ void Builder::start(std::function<ReloadStatus()> build) {
     current.context->make_current();
     try {
       status_ = build();
+    } catch (const NoRoomForDriver& e) {
+      error_ = e.what();
+      status_ = ReloadStatus::Failed;
     } catch (const std::bad_alloc&) {  // uncaught on this thread, it would end the window
-      std::cerr << "raymarching: error: not enough memory to build the scene; the last good picture stays\n";
+      error_ = "not enough memory to build the scene";
       status_ = ReloadStatus::Failed;
     }
     // Shared objects are complete for another context once this one has

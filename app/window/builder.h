@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/deep_stack.h"
@@ -39,6 +40,9 @@ class Builder {
   void start(std::function<ReloadStatus()> build);
   // The finished build's status, once; nullopt while one runs or none did.
   std::optional<ReloadStatus> finished();
+  // Why the finished build failed, where the build could not say it in its
+  // diagnostics (out of memory, or of room for the driver); else empty.
+  const std::string& error() const { return error_; }
   // Asks the build under way to stop where it can (it reads cancelled()).
   void cancel() { cancel_ = true; }
   bool cancelled() const { return cancel_; }
@@ -69,6 +73,7 @@ class Builder {
   DeepStackThread thread_;  // the driver's compiler recurses on deep shaders
   std::atomic<bool> done_{false}, cancel_{false};
   ReloadStatus status_ = ReloadStatus::Unchanged;
+  std::string error_;
 };
 
 }  // namespace rm

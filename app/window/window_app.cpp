@@ -324,6 +324,11 @@ class WindowApp {
     if (built == ReloadStatus::Swapped) project_.commit();
     graph_.hand_over(std::exchange(images_read_, {}));
     loaded(built, builder_.job_threads());
+    if (!builder_.error().empty()) {  // the last good picture stays, under the stale badge
+      show_error(builder_.error());
+      ++errors_;
+      update_title(true);
+    }
     shots_wait_for_build_ = false;
     if (std::exchange(load_again_, false)) load();
   }
@@ -331,6 +336,9 @@ class WindowApp {
   // A finished background build: its twins kept, or the tweak's exact
   // program on screen, where they still hold.
   void take_background(ReloadStatus built) {
+    // Nobody waits for it: what it could not build is built when a save asks.
+    if (!background_.error().empty())
+      std::cerr << "raymarching: warning: a background build failed: " << background_.error() << '\n';
     if (std::exchange(twin_build_, false)) {
       if (project_.take_twins(std::exchange(twin_results_, {}))) project_.commit_twins();
       if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
@@ -449,7 +457,7 @@ class WindowApp {
     watcher_->watch(project_.watch_list());
     std::string channel_error;
     if (status == ReloadStatus::Unchanged) {  // a channel image may have changed
-      if (project_.ready() && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
+      if (project_.ready() && !graph_.update(project_, &channel_error)) show_error(channel_error);
       if (graph_.images_changed()) {
         dirty_ = true;
         if (options_.verbose) std::cerr << "raymarching: channel images changed on disk, read at " << steady_ns() << '\n';
@@ -492,7 +500,7 @@ class WindowApp {
     if (status == ReloadStatus::Failed) show_again();
     else if (!same_picture) dirty_ = true;
     ui_event();
-    if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error)) channel_failed(channel_error);
+    if (status == ReloadStatus::Swapped && !graph_.update(project_, &channel_error)) show_error(channel_error);
     if (options_.verbose) {
       std::cerr << "raymarching: reload " << (status == ReloadStatus::Swapped ? "ok" : "failed") << " generation "
                 << project_.generation();
@@ -530,7 +538,7 @@ class WindowApp {
                   << why->str() << '\n';
   }
 
-  void channel_failed(const std::string& error) {
+  void show_error(const std::string& error) {
     std::cerr << "raymarching: error: " << error << '\n';
     model_.errors.push_back({Severity::Error, "", 0, 0, error});
     ui_event();
