@@ -15,10 +15,17 @@
 namespace rm {
 namespace {
 
+// GLFW holds its display connection for the whole suite: Xvfb resets when
+// its last client leaves, and a glfwInit() just after a glfwTerminate()
+// once found no display (CI, the sanitized build).
 class SharedContextTest : public ::testing::TestWithParam<int> {
  protected:
+  static void SetUpTestSuite() { glfw_ = glfwInit(); }
+  static void TearDownTestSuite() {
+    if (glfw_) glfwTerminate();
+  }
   void SetUp() override {
-    ASSERT_TRUE(glfwInit()) << "no display: run under xvfb-run";
+    ASSERT_TRUE(glfw_) << "no display: run under xvfb-run";
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, GetParam());
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -32,8 +39,8 @@ class SharedContextTest : public ::testing::TestWithParam<int> {
   }
   void TearDown() override {
     if (window_) glfwDestroyWindow(window_);
-    glfwTerminate();
   }
+  static inline bool glfw_ = false;
   GLFWwindow* window_ = nullptr;
 };
 
