@@ -760,9 +760,10 @@ def every_address_space_limit_ends_in_the_picture_or_one_line():
     that holds it, tori's window shows its picture, shows why it could not
     build it (and quits on Q), or ends with status 2 and one line of the
     host's (Mesa's loader adds its own `libGL error:` lines). Never a crash:
-    Mesa's compiler does not check its allocations, and before the host asked
-    for room it crashed at 380 to 420 MB and at 1000 MB (glibc's arenas and
-    256 MiB stacks had taken the rest); LLVM aborted at 1050 MB."""
+    Mesa's compiler does not check its allocations. It crashed at 725, 800
+    and 1000 MB, where glibc's arenas and 256 MiB stacks had taken the room,
+    and LLVM aborted at 1050 MB; with one arena alone, it crashed at 380 to
+    420 MB, until the host asked for room before the driver builds."""
     tori = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../examples/tori.frag")
     work = harness.work_dir("rm-e2e-limit-")
     err_path = os.path.join(work, "stderr.txt")
