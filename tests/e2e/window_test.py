@@ -778,13 +778,12 @@ def every_address_space_limit_ends_in_the_picture_or_one_line():
         wait_for(lambda: proc.poll() is not None or any(m in open(err_path).read() for m in settled), timeout=40)
         time.sleep(0.5)  # a crash after the picture would come now
         quit = proc.poll() is None
+        status = None
         if quit:
             window = wait_for(lambda: xdotool("search", "--pid", str(proc.pid)) or xdotool("search", "--name", "tori.frag"))
             if window:
-                xdotool("key", "--window", window.splitlines()[0], "q")
-        try:
-            status = proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
+                status = quit_with(proc, window.splitlines()[0], "q")
+        if status is None:  # it had ended, or found no window, or did not quit (and was killed)
             proc.kill()
             status = proc.wait()
         text = open(err_path).read()
