@@ -201,8 +201,13 @@ std::string parse_in_child(const std::string& source_text, const std::string* ac
 void build_builtins_for(const std::string& version_line) {
   static std::set<std::string> built;
   if (version_line.empty() || !built.insert(version_line).second) return;
-  glslang::TShader shader(EShLangFragment);
-  parse(version_line + "\nvoid main() {}\n", &shader, AfterError::Stop);
+  // Not on the worker's own stack, which is what `ulimit -s` gave it:
+  // glslang's parser overflowed 64 KiB. The built-ins need no deep stack,
+  // and under a `ulimit -v` the host's share of the limit leaves them room.
+  run_with_deep_stack([&] {
+    glslang::TShader shader(EShLangFragment);
+    parse(version_line + "\nvoid main() {}\n", &shader, AfterError::Stop);
+  });
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rm {
 
@@ -77,7 +78,7 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, const Sand
   const std::string child = std::to_string(pid);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limits.seconds);
   std::optional<SandboxResult::Status> killed;
-  char buffer[1 << 16];
+  std::vector<char> buffer(1 << 16);  // not on the stack: `ulimit -s 64` leaves the worker 64 KiB
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) killed = SandboxResult::Status::TimedOut;
@@ -91,10 +92,10 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, const Sand
       break;
     }
     if (ready[0].revents == 0) continue;
-    const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
+    const ssize_t n = read(pipe_fds[0], buffer.data(), buffer.size());
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
-    result.output.append(buffer, static_cast<size_t>(n));
+    result.output.append(buffer.data(), static_cast<size_t>(n));
   }
   close(pipe_fds[0]);
   if (killed) kill(pid, SIGKILL);

@@ -52,6 +52,14 @@ const Container* container_of(const fs::path& path) {
   return nullptr;
 }
 
+// " (killed by signal 11, Segmentation fault)" for an ffmpeg that a signal
+// ended, else "": x264's threads crash on a stack of 64 KiB (`ulimit -s`).
+std::string killed_by(int status) {
+  if (!WIFSIGNALED(status)) return "";
+  const int signal = WTERMSIG(status);
+  return " (killed by signal " + std::to_string(signal) + ", " + strsignal(signal) + ")";
+}
+
 std::string format_number(double value) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", value);
@@ -164,9 +172,7 @@ bool VideoEncoder::add(const Image& frame, std::string* error) {
       // ffmpeg closed its input: it failed or was stopped. Its status says which.
       const int status = end_input_and_wait();
       const std::string said = ffmpeg_said();
-      *error = "ffmpeg stopped while writing '" + path_.string() + "'" +
-               (WIFSIGNALED(status) ? std::string(" (killed by signal ") + std::to_string(WTERMSIG(status)) + ")"
-                                    : std::string("")) +
+      *error = "ffmpeg stopped while writing '" + path_.string() + "'" + killed_by(status) +
                (said.empty() ? "" : ": " + said);
       return false;
     }
@@ -189,7 +195,7 @@ bool VideoEncoder::finish(std::string* error) {
   const int status = end_input_and_wait();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string said = ffmpeg_said();
-    *error = "ffmpeg could not write '" + path_.string() + "'" + (said.empty() ? "" : ": " + said);
+    *error = "ffmpeg could not write '" + path_.string() + "'" + killed_by(status) + (said.empty() ? "" : ": " + said);
     abandon();
     return false;
   }

@@ -183,7 +183,7 @@ class Video(unittest.TestCase):
         os.kill(ffmpeg, signal.SIGKILL)
         _, err = run.communicate(timeout=60)
         self.assertEqual(run.returncode, 2)
-        self.assertEqual(err, f"raymarching: error: ffmpeg stopped while writing '{out}' (killed by signal 9)\n")
+        self.assertEqual(err, f"raymarching: error: ffmpeg stopped while writing '{out}' (killed by signal 9, Killed)\n")
         self.assertEqual(leftovers(self.dir), ["moving.frag"])
 
     def test_a_timeout_stops_ffmpeg_and_removes_its_file(self):
