@@ -340,13 +340,16 @@ class WindowApp {
     if (!background_.error().empty())
       std::cerr << "raymarching: warning: a background build failed: " << background_.error() << '\n';
     if (std::exchange(twin_build_, false)) {
-      if (project_.take_twins(std::exchange(twin_results_, {}))) project_.commit_twins();
+      const bool taken = project_.take_twins(std::exchange(twin_results_, {}));
+      if (taken) project_.commit_twins();
       if (project_.ready()) take_knobs();  // a float knob's change may now be a tweak
       // Unchanged but not cancelled: the twins were current already, or
       // there is nothing to lift, or glslang or the driver rejected them.
+      // Built but not taken: a save's program came meanwhile, whose twins
+      // are built next.
       if (options_.verbose)
         std::cerr << "raymarching: "
-                  << (built == ReloadStatus::Swapped ? "twins built"
+                  << (built == ReloadStatus::Swapped ? (taken ? "twins built" : "stale twins dropped")
                       : background_.cancelled()      ? "twins put off"
                                                      : "no new twins")
                   << " for generation " << project_.generation() << " in "

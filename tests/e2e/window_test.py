@@ -578,8 +578,10 @@ def knob_session():
     held = len(open(err_path).read())
     xdotool("mousedown", "--window", window, 1)
     xdotool("mousemove", "--window", window, str(x + 25), str(y))
-    # After `held`: twins of generation 1 that end after generation 2's swap
-    # are logged for generation 2 too (seen once in CI), before the slider is held.
+    # After `held`: these twins must be built while the slider is held. (Twins
+    # of generation 1 that ended after generation 2's swap used to be logged as
+    # built for generation 2, before the slider was held; they are now logged
+    # as "stale twins dropped".)
     wait_for(lambda: "twins built for generation 2" in open(err_path).read()[held:], timeout=30)
     xdotool("mouseup", "--window", window, 1)
     wait_for(lambda: "reload ok generation 3" in open(err_path).read(), timeout=30)
