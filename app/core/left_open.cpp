@@ -13,6 +13,26 @@ namespace {
 
 bool opens_conditional(std::string_view name) { return name == "if" || name == "ifdef" || name == "ifndef"; }
 
+// A directive that puts no code in the text and leaves every line compiled:
+// the code above it is what the token after it follows.
+bool emits_nothing(std::string_view name) {
+  return name == "define" || name == "undef" || name == "pragma" || name == "extension";
+}
+
+// Where the line that starts at `begin` begins as the preprocessor reads it:
+// at the first of the lines before it that each end in a backslash.
+size_t logical_line_start(std::string_view code, size_t begin, int* number) {
+  while (begin > 1) {  // at 1, the line above is empty
+    const size_t end = begin - 1;  // the '\n' before the line
+    const size_t above = code.rfind('\n', end - 1) + 1;  // npos + 1 is 0: the first line
+    const size_t last = code.find_last_not_of(" \t\r\f\v", end - 1);
+    if (last == std::string_view::npos || last < above || code[last] != '\\') break;
+    begin = above;
+    --*number;
+  }
+  return begin;
+}
+
 int file_of(const Source& source, int final_line) {
   return final_line >= 1 && static_cast<size_t>(final_line) <= source.line_map.size()
              ? source.line_map[static_cast<size_t>(final_line) - 1].file
@@ -111,10 +131,16 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, std::
     const size_t end = begin - 1;  // the '\n' before the line below
     begin = end == 0 ? 0 : code.rfind('\n', end - 1) + 1;  // npos + 1 is 0: the first line
     const std::string_view line = std::string_view(code).substr(begin, end - begin);
-    if (const auto d = lexing::directive(line)) {
+    // A #define's body continued by backslashes is the directive's, not code.
+    int head_number = number;
+    const size_t head = logical_line_start(code, begin, &head_number);
+    const size_t head_end = code.find('\n', head);
+    if (const auto d = lexing::directive(std::string_view(code).substr(head, head_end - head))) {
       if (d->name == "endif") ++depth;
       else if (opens_conditional(d->name) && depth > 0) --depth;
-      past_directive = true;
+      past_directive = past_directive || !emits_nothing(d->name);
+      begin = head;
+      number = head_number;
       continue;
     }
     if (depth > 0 || lexing::skip_blanks(line, 0) == line.size()) continue;
@@ -123,7 +149,7 @@ std::optional<LeftOpen> declaration_left_open_before(const Source& source, std::
     if (file >= 0 && file != file_of(source, error_line))
       return LeftOpen{number, last_column,
                       message.substr(0, at) + "syntax error at the end of the file" + message.substr(token_end)};
-    // In the same file, with no directive between (which branch was
+    // In the same file, with no conditional between (which branch was
     // compiled is not known here), the line above was left unfinished.
     const size_t expecting = message.find(", expecting ", token_end);
     if (file < 0 || past_directive || at_text_end || expecting == std::string::npos) return std::nullopt;

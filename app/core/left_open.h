@@ -34,8 +34,9 @@ std::optional<LeftOpen> brace_left_open_before(const Source& source, std::string
 // For glslang's "syntax error, unexpected TOKEN" at the first token of
 // `error_line` (found at `column`, 0 if not), or at the end of the text: the
 // end of the user's file whose code comes just before, in another file (or
-// none), where the ';' or ')' goes. In the same file, with no directive
-// between, the end of the line above, as gcc and clang name a missing ';':
+// none), where the ';' or ')' goes. In the same file, with no conditional
+// between (a #define may be), the end of the code above, as gcc and clang
+// name a missing ';':
 // "syntax error, expecting COMMA or SEMICOLON before RIGHT_BRACE".
 std::optional<LeftOpen> declaration_left_open_before(const Source& source, std::string_view code, int error_line,
                                                      int column, const std::string& message);

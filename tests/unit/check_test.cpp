@@ -581,9 +581,10 @@ TEST(Check, AnUnexpectedTokenIsPointedAt) {
 
 // A token that starts its line, where the line above lacks a ';' (or a ')'
 // or ','), is named as gcc and clang name it: where the missing token goes,
-// at the end of the code above, past comments and blank lines, and after an
-// earlier error too. Across a directive (which branch was compiled is not
-// known) glslang's place stays.
+// at the end of the code above, past comments, blank lines and #defines
+// (their bodies continued by backslashes too), and after an earlier error
+// too. Across a conditional (which branch was compiled is not known)
+// glslang's place stays.
 TEST(Check, ASeparatorMissingAtALinesEndIsNamedWhereItGoes) {
   test::TempDir dir;
   const std::string scene = (dir / "scene.frag").string();
@@ -602,6 +603,11 @@ TEST(Check, ASeparatorMissingAtALinesEndIsNamedWhereItGoes) {
        ":3:17: error: syntax error, expecting ',' or ';' before 'return'"},
       {"  c = vec4(1.0)\n#ifdef NOPE\n  c.x = 0.0;\n#endif\n  return;\n",
        ":7:3: error: syntax error, unexpected 'return', expecting ',' or ';'"},
+      {"  c = vec4(1.0)\n#define HALF 0.5\n#pragma optimize(on)\n  c.x = HALF;\n",
+       ":3:16: error: syntax error, expecting ',' or ';' before 'c'"},
+      // A body continued by backslashes is the #define's, not code left unfinished.
+      {"  c = vec4(1.0)\n  #define TWICE(x) \\\n    (x) * \\\n    2.0\n  c.x = TWICE(c.y);\n",
+       ":3:16: error: syntax error, expecting ',' or ';' before 'c'"},
   };
   for (const auto& [body, expected] : cases)
     EXPECT_EQ(join(diagnostics_of_main_body(dir, body)), scene + expected + "\n") << body;
