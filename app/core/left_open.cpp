@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/glslang_words.h"
@@ -19,14 +20,17 @@ bool emits_nothing(std::string_view name) {
   return name == "define" || name == "undef" || name == "pragma" || name == "extension";
 }
 
+bool ends_in_backslash(std::string_view line) {
+  const size_t last = line.find_last_not_of(" \t\r\f\v");
+  return last != std::string_view::npos && line[last] == '\\';
+}
+
 // Where the line that starts at `begin` begins as the preprocessor reads it:
 // at the first of the lines before it that each end in a backslash.
 size_t logical_line_start(std::string_view code, size_t begin, int* number) {
-  while (begin > 1) {  // at 1, the line above is empty
-    const size_t end = begin - 1;  // the '\n' before the line
-    const size_t above = code.rfind('\n', end - 1) + 1;  // npos + 1 is 0: the first line
-    const size_t last = code.find_last_not_of(" \t\r\f\v", end - 1);
-    if (last == std::string_view::npos || last < above || code[last] != '\\') break;
+  while (begin > 0) {
+    const size_t above = begin == 1 ? 0 : code.rfind('\n', begin - 2) + 1;  // npos + 1 is 0: the first line
+    if (!ends_in_backslash(code.substr(above, begin - 1 - above))) break;
     begin = above;
     --*number;
   }
@@ -80,8 +84,12 @@ std::optional<LeftOpen> brace_left_open_before(const Source& source, std::string
   for (size_t i = 0; i < source.line_map.size(); ++i)
     if (source.line_map[i].file >= 0) files[source.line_map[i].file].last_line = static_cast<int>(i) + 1;
   std::vector<bool> in_later_branch;  // per open conditional
+  bool directive_goes_on = false;     // the line above was a directive's, ended by a backslash
   lexing::for_each_line(code, [&](std::string_view line, int number) {
     if (number >= error_line) return false;
+    const bool continued = std::exchange(directive_goes_on, false);
+    if (continued || lexing::directive(line)) directive_goes_on = ends_in_backslash(line);
+    if (continued) return true;  // a #define's body: its braces are not code yet
     if (const auto d = lexing::directive(line)) {
       if (opens_conditional(d->name)) in_later_branch.push_back(false);
       else if ((d->name == "else" || d->name == "elif") && !in_later_branch.empty()) in_later_branch.back() = true;

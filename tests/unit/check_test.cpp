@@ -71,7 +71,8 @@ TEST(Check, BraceLeftOpenAtAFilesEndIsTheError) {
 }
 
 // Braces that do balance are left alone: an include inside a function's
-// body, and the alternative branches of a conditional, each with a '{'.
+// body, the alternative branches of a conditional, each with a '{', and a
+// '{' in a #define's body.
 TEST(Check, BalancedBracesKeepGlslangsError) {
   TempDir dir;
   write_file(dir / "body.glsl", "return nope;\n");
@@ -85,6 +86,11 @@ TEST(Check, BalancedBracesKeepGlslangsError) {
                                  "void mainImage(out vec4 c, in vec2 f) { c = vec4(nope); }\n");
   check_scene(dir / "scene.frag", {}, &diags);
   EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":8:50: error: 'nope' : undeclared identifier\n");
+  // A '{' in a #define's body continued by a backslash is not code yet.
+  write_file(dir / "lib.glsl", "#define BEGIN_BLOCK \\\n  {\nfloat g() { return 1.0; }\n");
+  write_file(dir / "scene.frag", "#include \"lib.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) {\n  c = vec4(g())\n}\n");
+  check_scene(dir / "scene.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "scene.frag").string() + ":3:16: error: syntax error, expecting ',' or ';' before '}'\n");
 }
 
 // A declaration a file leaves unfinished: glslang names the next token,
