@@ -11,13 +11,15 @@ namespace rm {
 
 ShotWriter::ShotWriter(bool verbose) : verbose_(verbose), thread_([this] { run(); }) {}
 
-ShotWriter::~ShotWriter() {
+ShotWriter::~ShotWriter() { finish(); }
+
+void ShotWriter::finish() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     closing_ = true;
   }
   wake_.notify_one();
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
 }
 
 void ShotWriter::write(Image image, std::filesystem::path path, Metadata metadata) {

@@ -26,6 +26,8 @@ class ShotWriter {
   // Queues `image` for `path` (a new file: an existing one is never
   // replaced, the name is numbered instead).
   void write(Image image, std::filesystem::path path, Metadata metadata);
+  // Writes every shot queued, then takes no more.
+  void finish();
 
  private:
   struct Shot {

@@ -40,6 +40,7 @@
 #include "core/scene.h"
 #include "core/stderr_shut.h"
 #include "window/builder.h"
+#include "window/display_lost.h"
 #include "window/kept_picture.h"
 #include "window/key_codes.h"
 #include "window/panels.h"
@@ -106,11 +107,14 @@ class WindowApp {
     ui_.set_visible(options.interface);
   }
 
+  ~WindowApp() { on_display_lost({}); }  // its last words are this window's
+
   // A build still running once run() has returned: the driver may compile
   // a large shader for a minute more.
   bool building() const { return builder_.running() || background_.running(); }
 
   int run() {
+    on_display_lost([this] { write_what_is_left(); });
     for (size_t i = 0; i < options_.channels.size(); ++i) {
       const auto& path = options_.channels[i];
       std::string error;
@@ -1221,13 +1225,23 @@ class WindowApp {
   }
 
   void finish_take() {
+    write_take();
+    update_title(true);
+  }
+  void write_take() {
     const int frames = take_.frames();
     std::string error;
     if (auto written = take_.stop(&error))
       std::cout << "take: " << written->string() << " (" << frames << " frames)" << std::endl;
     else
       std::cerr << "raymarching: error: take: " << error << '\n';
-    update_title(true);
+  }
+
+  // The X server is gone: what is being written is written, with no call to
+  // the display (display_lost.h).
+  void write_what_is_left() {
+    if (take_.recording()) write_take();
+    shot_writer_.finish();
   }
 
   // V: picture, steps, normals, depth, nan, picture; views this scene cannot

@@ -11,7 +11,7 @@ identical videos; the frame the shot names (raymarching:take_frame) matches
 the shot; a replay at another rate and size has the frames that rate asks
 for; a take whose source changed since renders with one warning naming it;
 a take does not load the image module; SIGTERM while a take records closes
-the window with the take written.
+the window with the take written, and so does the X server going away.
 """
 import filecmp
 import glob
@@ -159,6 +159,7 @@ def main():
     check("a take of a changed scene renders with one warning naming the file",
           r.returncode == 0 and len(warnings) == 1 and "take.frag" in warnings[0], r.stderr)
     killed_while_recording(work, scene)
+    display_lost_while_recording(work, scene)
     return summary()
 
 
@@ -192,6 +193,46 @@ def killed_while_recording(work, scene):
           os.path.exists(os.path.join(work, written[0][0])) and int(written[0][1]) > 0, open(out).read())
     check("... and ends with status 143 and one line that names the signal",
           status == 143 and "raymarching: the window was closed by SIGTERM\n" in open(err).read(),
+          f"status {status}: {open(err).read()[-300:]}")
+
+
+def display_lost_while_recording(work, scene):
+    """The X server going away under the window (it ended, or xkill cut the
+    window off) ended the process in Xlib, with "X connection to :N broken"
+    and status 1: the take being recorded was lost. The window now writes
+    it first, and ends with one line and status 2. The window runs on an X
+    server of its own, which the test ends."""
+    read_end, write_end = os.pipe()
+    xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
+                            pass_fds=(write_end,), stderr=subprocess.DEVNULL)
+    os.close(write_end)
+    display = ":" + os.read(read_end, 16).decode().strip()
+    os.close(read_end)
+    env = dict(os.environ, DISPLAY=display)
+    out, err = os.path.join(work, "lost-stdout.txt"), os.path.join(work, "lost-stderr.txt")
+    proc = open_window([BINARY, scene, "--size", "160x90", "--no-ui", "-v"], out, err, work, env=env)
+
+    def on_display(*args):
+        return subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True, env=env).stdout.split()
+
+    window = wait_for(lambda: "presented generation 1" in open(err).read() and on_display("search", "--name", "take.frag"))
+    check("a window opens on an X server of its own", bool(window), open(err).read()[-300:])
+    recording = window and on_display("key", "--window", window[0], "F9") is not None and \
+        wait_for(lambda: "take: recording" in open(out).read(), timeout=10)
+    time.sleep(0.5)
+    xvfb.kill()
+    xvfb.wait()
+    try:
+        status = proc.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    written = re.findall(r"^take: (.*) \((\d+) frames\)$", open(out).read(), re.M)
+    check("the display lost while a take records: the take is written", recording and written and
+          os.path.exists(os.path.join(work, written[0][0])) and int(written[0][1]) > 0, open(out).read())
+    check("... and the window ends with status 2 and one line that names the display",
+          status == 2 and open(err).read().endswith(f"raymarching: error: lost the X display {display} (its server "
+                                                    "ended, or it closed this window's connection)\n"),
           f"status {status}: {open(err).read()[-300:]}")
 
 

@@ -1,0 +1,17 @@
+// When the X server goes away under the window (it ended, or xkill cut this
+// client off), Xlib calls its I/O error handler and then ends the process
+// itself, with exit(1) and words of its own: a take being recorded and the
+// shots still being written were lost. The window's handler writes them
+// first, says so in one line and ends with status 2, as an I/O error.
+#pragma once
+#include <functional>
+
+namespace rm {
+
+// Installs the handler for the process. `last_words` runs on the thread that
+// calls this (the window's), before the process ends; on another thread
+// that meets the lost display first (a builder's), the handler waits a
+// moment for the window's thread to meet it too.
+void on_display_lost(std::function<void()> last_words);
+
+}  // namespace rm
