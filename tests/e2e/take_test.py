@@ -163,6 +163,20 @@ def main():
     return summary()
 
 
+def ended_with_take(proc, out, work, recording, name):
+    """Waits for the window to end, and checks (as `name`) that it wrote the
+    take it was `recording`. Its exit status; None if it had to be killed."""
+    try:
+        status = proc.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        status = None
+    written = re.findall(r"^take: (.*) \((\d+) frames\)$", open(out).read(), re.M)
+    check(name, recording and written and os.path.exists(os.path.join(work, written[0][0])) and
+          int(written[0][1]) > 0, open(out).read())
+    return status
+
+
 def killed_while_recording(work, scene):
     """SIGTERM (a kill; Ctrl-C's SIGINT alike) closes the window as Q does:
     the take being recorded is written, and the exit status says which
@@ -183,14 +197,7 @@ def killed_while_recording(work, scene):
           "raymarching-images" not in maps and "libOpenImageIO" not in maps,
           [line.split()[-1] for line in maps.splitlines() if "OpenImageIO" in line or "raymarching-images" in line][:3])
     proc.terminate()
-    try:
-        status = proc.wait(timeout=30)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        status = None
-    written = re.findall(r"^take: (.*) \((\d+) frames\)$", open(out).read(), re.M)
-    check("SIGTERM while a take records writes the take", recording and written and
-          os.path.exists(os.path.join(work, written[0][0])) and int(written[0][1]) > 0, open(out).read())
+    status = ended_with_take(proc, out, work, recording, "SIGTERM while a take records writes the take")
     check("... and ends with status 143 and one line that names the signal",
           status == 143 and "raymarching: the window was closed by SIGTERM\n" in open(err).read(),
           f"status {status}: {open(err).read()[-300:]}")
@@ -222,14 +229,7 @@ def display_lost_while_recording(work, scene):
     time.sleep(0.5)
     xvfb.kill()
     xvfb.wait()
-    try:
-        status = proc.wait(timeout=30)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        status = None
-    written = re.findall(r"^take: (.*) \((\d+) frames\)$", open(out).read(), re.M)
-    check("the display lost while a take records: the take is written", recording and written and
-          os.path.exists(os.path.join(work, written[0][0])) and int(written[0][1]) > 0, open(out).read())
+    status = ended_with_take(proc, out, work, recording, "the display lost while a take records: the take is written")
     check("... and the window ends with status 2 and one line that names the display",
           status == 2 and open(err).read().endswith(f"raymarching: error: lost the X display {display} (its server "
                                                     "ended, or it closed this window's connection)\n"),
