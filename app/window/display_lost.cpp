@@ -2,6 +2,7 @@
 
 #include <X11/Xlib.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -16,15 +17,18 @@ namespace {
 
 std::function<void()> last_words;
 std::thread::id window_thread;
+std::atomic<bool> window_ending{false};  // the window's thread is in its last words
 
 int display_lost(Display* display) {
-  static bool ending = false;  // last_words met the lost display again
   if (std::this_thread::get_id() == window_thread) {
-    if (last_words && !std::exchange(ending, true)) last_words();
+    if (!window_ending.exchange(true) && last_words) last_words();  // once: they might meet the display again
   } else {
-    // The window's thread meets it at its next event (within 250 ms) and
-    // ends the process; this is for a window's thread that never does.
-    std::this_thread::sleep_for(std::chrono::seconds(2));
+    // A builder's thread met it first. The window's thread meets it at its
+    // next event (within 250 ms), writes what it must and ends the process;
+    // this thread ends it only where the window's never comes.
+    for (int waited = 0; waited < 20 && !window_ending; ++waited)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    while (window_ending) std::this_thread::sleep_for(std::chrono::seconds(1));
   }
   std::cout.flush();
   std::cerr << "raymarching: error: lost the X display " << DisplayString(display)

@@ -9,9 +9,9 @@
 namespace rm {
 
 // Installs the handler for the process. `last_words` runs on the thread that
-// calls this (the window's), before the process ends; on another thread
-// that meets the lost display first (a builder's), the handler waits a
-// moment for the window's thread to meet it too.
+// calls this (the window's), before the process ends; another thread that
+// meets the lost display first (a builder's) waits for the window's thread
+// to meet it too, for 2 s.
 void on_display_lost(std::function<void()> last_words);
 
 }  // namespace rm
