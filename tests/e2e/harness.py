@@ -84,15 +84,16 @@ def wait_for(predicate, timeout=20.0, step=0.05):
     return None
 
 
-def xdotool(*args):
-    out = subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True).stdout.strip()
+def xdotool(*args, env=None):
+    """xdotool's answer, on the display of `env` (default: this process's)."""
+    out = subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True, env=env).stdout.strip()
     if args and args[0] == "key" and "--window" in args:
         # xdotool presses a key of the focused window by XTEST and releases
         # it by XSendEvent once the window has gone (Q quits in 5 ms): the
         # key stayed down in the server, and its autorepeat quit every
         # window opened after it (seen: nine tests of e2e.budget in a row).
         keys = [str(a) for a in args[args.index("--window") + 2:]]
-        subprocess.run(["xdotool", "keyup", *keys], capture_output=True)
+        subprocess.run(["xdotool", "keyup", *keys], capture_output=True, env=env)
     return out
 
 

@@ -217,20 +217,19 @@ def display_lost_while_recording(work, scene):
     display = ":" + os.read(read_end, 16).decode().strip()
     os.close(read_end)
     env = dict(os.environ, DISPLAY=display)
-
-    def on_display(*args):
-        return subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True, env=env).stdout.split()
-
     # Once it answers: a window opened before failed to open the display (once, in a whole ctest run).
-    answers = wait_for(lambda: on_display("getdisplaygeometry"), timeout=10)
+    answers = wait_for(lambda: xdotool("getdisplaygeometry", env=env), timeout=10)
     out, err = os.path.join(work, "lost-stdout.txt"), os.path.join(work, "lost-stderr.txt")
     proc = open_window([BINARY, scene, "--size", "160x90", "--no-ui", "-v"], out, err, work, env=env)
-    window = wait_for(lambda: "presented generation 1" in open(err).read() and on_display("search", "--name", "take.frag"))
+    window = wait_for(lambda: "presented generation 1" in open(err).read() and
+                      xdotool("search", "--name", "take.frag", env=env))
     check("a window opens on an X server of its own", bool(window),
           f"{display} answered: {bool(answers)}; the window said: {open(err).read()[-300:]}; "
           f"Xvfb said: {open(xvfb_log).read()[-300:]}")
-    recording = window and on_display("key", "--window", window[0], "F9") is not None and \
-        wait_for(lambda: "take: recording" in open(out).read(), timeout=10)
+    recording = None
+    if window:
+        xdotool("key", "--window", window.splitlines()[0], "F9", env=env)
+        recording = wait_for(lambda: "take: recording" in open(out).read(), timeout=10)
     time.sleep(0.5)
     xvfb.kill()
     xvfb.wait()
