@@ -25,7 +25,7 @@ int CheckCommand::run() const {
   // Every pass of a project (or a Shadertoy .json); -E prints the image pass.
   const Source source = check_project(project_files(scene_), source_.source(), &diags);
   std::cerr << join(diags);
-  if (count_errors(diags)) return kExitShaderError;
+  if (count_errors(diags)) return build_failure_status(diags);
   if (expand_) {
     auto text = expand_preprocessor(source, &diags, no_line_markers_ ? LineMarkers::Off : LineMarkers::On);
     std::cerr << join(diags);

@@ -501,6 +501,7 @@ Diagnostic no_verdict(const Source& source, const GlslangReply& reply) {
       break;
     case GlslangReply::Status::NoWorker:
       d.message = "cannot check this shader: " + reply.output;
+      d.unchecked = true;
       break;
     default:
       d.message = std::string("glslang crashed on this shader (") +

@@ -67,6 +67,11 @@ int count_errors(const Diagnostics& diags) {
   }));
 }
 
+int build_failure_status(const Diagnostics& diags) {
+  const bool unchecked = std::any_of(diags.begin(), diags.end(), [](const Diagnostic& d) { return d.unchecked; });
+  return unchecked ? kExitUsage : kExitShaderError;
+}
+
 void append_new(Diagnostics* to, const Diagnostics& more) {
   for (const Diagnostic& d : more)
     if (std::find(to->begin(), to->end(), d) == to->end()) to->push_back(d);

@@ -18,6 +18,10 @@ struct Diagnostic {
   int line = 0;      // 1-based; 0 when the message has no line (link errors)
   int column = 0;    // 1-based; 0 when unknown
   std::string message;
+  // The host could not check the shader at all (the scene could not be read,
+  // or its glslang worker would not start or answer): an error of the
+  // machine, not of the shader.
+  bool unchecked = false;
   bool operator==(const Diagnostic&) const = default;
 
   // "path:line:col" (only what is known; "raymarching" for no path).
@@ -31,6 +35,10 @@ struct Diagnostic {
 using Diagnostics = std::vector<Diagnostic>;
 
 int count_errors(const Diagnostics& diags);
+// The exit status for a shader that failed to build with `diags`: 1, or 2
+// where the host could not check it (an error of the machine, which a farm
+// retries elsewhere, not one of the shader).
+int build_failure_status(const Diagnostics& diags);
 // Appends those of `more` that `to` does not hold yet: the passes that draw
 // one file (glslViewer's buffers) find the same problems in the code they share.
 void append_new(Diagnostics* to, const Diagnostics& more);

@@ -389,7 +389,12 @@ class Preprocessor {
     if (!bytes) {
       const int file = from_file < 0 ? add_file(path) : -1;
       if (!why.path.empty()) out_.errors.push_back(std::move(why));  // where the cause is: the JSON's line
-      else if (from_file < 0) error(file, 0, 0, "cannot read scene: " + why.message);
+      else if (from_file < 0) {
+        // The scene itself could not be read: nothing was checked, as with
+        // a scene missing from the command line (an I/O error, status 2).
+        error(file, 0, 0, "cannot read scene: " + why.message);
+        out_.errors.back().unchecked = true;
+      }
       else error(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + why.message);
       return;
     }

@@ -99,12 +99,16 @@ class Bench {
 
   // The picture and the data view of `setting`; the data view of `data_setting`
   // when given (the reference's depth comes from one centred sample).
-  std::optional<Renders> render(const Setting& setting, std::string* error, const Setting* data_setting = nullptr) {
+  // `status`, when given, is set to the exit status of a failure to build.
+  std::optional<Renders> render(const Setting& setting, std::string* error, const Setting* data_setting = nullptr,
+                                int* status = nullptr) {
     const Setting& d = data_setting ? *data_setting : setting;
     Project color(req_.scene, options_for(setting));
     Project data(req_.scene, with_view(options_for(d), View::Data));
     if (color.reload() != ReloadStatus::Swapped || data.reload() != ReloadStatus::Swapped) {
-      *error = join(color.diagnostics().empty() ? data.diagnostics() : color.diagnostics());
+      const Diagnostics& failed = color.diagnostics().empty() ? data.diagnostics() : color.diagnostics();
+      *error = join(failed);
+      if (status) *status = build_failure_status(failed);
       return std::nullopt;
     }
     FrameGraph color_graph(renderer_), data_graph(renderer_);
@@ -282,10 +286,11 @@ int accuracy_command(const AccuracyRequest& input) {
   std::cerr << "accuracy: rendering the reference (preset reference)...\n";
   const Setting reference_setting{"reference", "reference", reference_knobs, {}};
   const Setting reference_centre{"reference", "reference", with_define(reference_knobs, "RM_SAMPLES", "1"), {}};
-  const auto reference = bench.render(reference_setting, &error, &reference_centre);
+  int failed = kExitShaderError;
+  const auto reference = bench.render(reference_setting, &error, &reference_centre, &failed);
   if (!reference) {
     std::cerr << error;
-    return kExitShaderError;
+    return failed;
   }
   if (!write_image(req.out / "reference.png", reference->color, {}, Overwrite::Replace, &error)) {
     std::cerr << "raymarching: error: " << error << '\n';

@@ -145,7 +145,7 @@ int render_frames(const RenderRequest& req) {
   project.set_options(req.source, with_view(req.source, req.view));
   const bool built = project.reload() == ReloadStatus::Swapped;
   print_diagnostics(project.diagnostics());
-  if (!built) return kExitShaderError;
+  if (!built) return build_failure_status(project.diagnostics());
   Renderer renderer;
   if (std::max(req.size.x, req.size.y) > renderer.max_tile() && !project.image_source().movable_frag_coord)
     return fail("--size " + std::to_string(req.size.x) + "x" + std::to_string(req.size.y) + " is larger than " +
