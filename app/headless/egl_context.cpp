@@ -65,16 +65,21 @@ std::vector<EGLDisplay> candidate_displays() {
 }  // namespace
 
 std::unique_ptr<EglContext> EglContext::create(std::string* error) {
-  // libepoxy opens the GL library at the first GL call and aborts if it
-  // cannot (under an address-space limit, once the driver is mapped):
-  // opened first here, as epoxy would, that is a message. Epoxy's own open
-  // then finds it.
-  if (!dlopen("libOpenGL.so.0", RTLD_LAZY | RTLD_LOCAL) && !dlopen("libGL.so.1", RTLD_LAZY | RTLD_LOCAL)) {
-    const char* why = dlerror();
-    *error = "cannot load libOpenGL.so.0 or libGL.so.1" + within_address_space_limit() + ": " +
-             (why ? why : "unknown") + (address_space_limit_kib() ? "" : " (is libopengl0 installed?)");
+  // libepoxy opens libEGL at the first EGL call and the GL library at the
+  // first GL call, and aborts if it cannot (under an address-space limit,
+  // once the driver is mapped; with no file descriptor left): opened first
+  // here, as epoxy would, that is a message. Epoxy's own opens then find
+  // them loaded.
+  const auto cannot_load = [&](const std::string& names, const char* package) {
+    const std::string why = dlerror();  // dlopen just failed: never null
+    const bool missing = why.find("No such file") != std::string::npos && !address_space_limit_kib();
+    *error = "cannot load " + names + within_address_space_limit() + ": " + why +
+             (missing ? " (is " + std::string(package) + " installed?)" : "");
     return nullptr;
-  }
+  };
+  if (!dlopen("libEGL.so.1", RTLD_LAZY | RTLD_LOCAL)) return cannot_load("libEGL.so.1", "libegl1");
+  if (!dlopen("libOpenGL.so.0", RTLD_LAZY | RTLD_LOCAL) && !dlopen("libGL.so.1", RTLD_LAZY | RTLD_LOCAL))
+    return cannot_load("libOpenGL.so.0 or libGL.so.1", "libopengl0");
   for (EGLDisplay display : candidate_displays()) {
     if (display == EGL_NO_DISPLAY) continue;
     EGLContext context = make_context(display);
