@@ -23,6 +23,7 @@
 #include "core/address_space.h"
 #include "core/deep_stack.h"
 #include "core/diagnostics.h"
+#include "core/stop_signals.h"
 #include "window/window_app.h"
 
 namespace {
@@ -108,6 +109,7 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   rm::fit_malloc_to_address_space_limit();
+  rm::StopSignals::prepare();  // before anything else takes file descriptors
   // Every command may build a program in the GL driver, whose compiler
   // recurses on a shader's trees, on this thread: give it a deep stack.
   int status = 0;

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <mutex>
 #include <string>
 
 namespace rm {
@@ -15,7 +16,12 @@ namespace {
 
 constexpr std::array<int, 3> kSignals = {SIGINT, SIGTERM, SIGHUP};
 
-// The pipe's end for the handler: writing to a pipe is async-signal-safe.
+// The process's pipe, kept once made (StopSignals::prepare).
+std::mutex g_pipe_mutex;
+int g_pipe[2] = {-1, -1};
+
+// The pipe's end for the handler while a StopSignals lives: writing to a
+// pipe is async-signal-safe.
 int g_write_end = -1;
 std::array<struct sigaction, kSignals.size()> g_before;
 std::array<bool, kSignals.size()> g_caught{};
@@ -29,11 +35,19 @@ void on_signal(int signal) {
 
 }  // namespace
 
+void StopSignals::prepare() {
+  std::lock_guard<std::mutex> lock(g_pipe_mutex);
+  if (g_pipe[0] < 0 && pipe2(g_pipe, O_CLOEXEC | O_NONBLOCK) != 0) g_pipe[0] = g_pipe[1] = -1;
+}
+
 StopSignals::StopSignals() {
-  if (pipe2(pipe_, O_CLOEXEC | O_NONBLOCK) != 0) {
-    pipe_[0] = pipe_[1] = -1;
-    return;
+  prepare();
+  {
+    std::lock_guard<std::mutex> lock(g_pipe_mutex);
+    pipe_[0] = g_pipe[0];
+    pipe_[1] = g_pipe[1];
   }
+  if (pipe_[0] < 0) return;
   g_write_end = pipe_[1];
   struct sigaction action {};
   action.sa_handler = on_signal;
@@ -50,8 +64,10 @@ StopSignals::~StopSignals() {
   for (size_t i = 0; i < kSignals.size(); ++i)
     if (g_caught[i]) sigaction(kSignals[i], &g_before[i], nullptr);
   g_write_end = -1;
-  close(pipe_[0]);
-  close(pipe_[1]);
+  // Kept for the next: what this one was sent is not the next one's.
+  unsigned char left = 0;
+  while (read(pipe_[0], &left, 1) == 1) {
+  }
 }
 
 int StopSignals::received() {

@@ -6,7 +6,8 @@
 // take). A second one ends the process as if nothing were caught, in case
 // the first is not seen. A signal ignored when the program began (nohup's
 // SIGHUP, a script's background job's SIGINT) stays ignored, as in any Unix
-// tool. One at a time per process.
+// tool. One at a time per process; each uses the one pipe of the process,
+// which prepare() makes at the program's start.
 #pragma once
 #include <string>
 
@@ -14,6 +15,11 @@ namespace rm {
 
 class StopSignals {
  public:
+  // Makes the pipe now, while file descriptors are to be had: a window that
+  // later runs near its ulimit -n still ends in its own time, its take
+  // written. main() calls it first; a StopSignals makes it if none has.
+  static void prepare();
+
   StopSignals();
   ~StopSignals();  // signals act as before it
   StopSignals(const StopSignals&) = delete;
@@ -28,7 +34,7 @@ class StopSignals {
   void wake();
 
  private:
-  int pipe_[2] = {-1, -1};
+  int pipe_[2] = {-1, -1};  // the process's pipe (not this object's), or -1 without one
   int signal_ = 0;
 };
 
