@@ -92,10 +92,14 @@ struct Outcome {
 // `shell_before` runs in that shell first (a ulimit).
 inline Outcome run_binary(const std::string& args, const std::string& shell_before = "") {
   TempDir dir;
-  const std::string cmd = shell_before + "exec " + std::string(RM_BINARY) + " " + args + " 2> '" + (dir / "err.txt").string() + "' >/dev/null";
+  // Redirected before `shell_before`: under a small ulimit -n, dash cannot
+  // save a descriptor to redirect a command's (it dups it to 10 and above).
+  const std::string cmd = "exec 2> '" + (dir / "err.txt").string() + "' >/dev/null; " + shell_before + "exec " +
+                          std::string(RM_BINARY) + " " + args;
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid == 0) {
+    closefrom(3);  // the test's own files are not the binary's (a ulimit -n counts them)
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }

@@ -562,6 +562,36 @@ TEST_F(Pathological, ASmallStackLimitChecksAndRenders) {
   }
 }
 
+// Few file descriptors (ulimit -n): each command ends in its output or in
+// one line with status 2, whichever step runs out first. libepoxy aborted
+// when it could not open libEGL (ulimit -n 8: "Couldn't open libEGL.so.1",
+// status 134), and a glslang worker that could not start was a shader error
+// (status 1).
+TEST_F(Pathological, EveryFileDescriptorLimitEndsInTheOutputOrOneLine) {
+  write_file(dir_ / "white.frag", kMain);
+  for (int fds = 4; fds <= 16; ++fds) {
+    const std::string limit = "ulimit -n " + std::to_string(fds) + "; ";
+    for (const std::string out : {"", "out.png", "out.mp4"}) {
+      SCOPED_TRACE("under " + limit + (out.empty() ? "check" : "render -o " + out));
+      const std::string args = out.empty() ? "check " + path("white.frag")
+                                           : "render " + path("white.frag") + " -o " + path(out) + " --size 16x8" +
+                                                 (out == "out.mp4" ? " --frames 2" : "");
+      const test::Outcome r = test::run_binary(args, limit);
+      const bool written = !out.empty() && std::filesystem::exists(dir_ / out);
+      if (r.status == 0) {
+        EXPECT_EQ(r.err, "");
+        EXPECT_TRUE(out.empty() || written);
+      } else {
+        EXPECT_EQ(r.status, 2) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_NE(r.err.find("Too many open files"), std::string::npos) << r.err;
+        EXPECT_FALSE(written);
+      }
+      if (!out.empty()) std::filesystem::remove(dir_ / out);
+    }
+  }
+}
+
 TEST_F(Pathological, SizeLimits) {
   const std::string over(16u * 1024 * 1024 + 1, ' ');
   write_file(dir_ / "huge.frag", kMain + over);
