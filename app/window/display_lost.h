@@ -14,4 +14,19 @@ namespace rm {
 // to meet it too, for 2 s.
 void on_display_lost(std::function<void()> last_words);
 
+// Mesa's GLX reads the server's replies through xcb, not Xlib, and does not
+// check for a reply that never comes: a display lost while a context is
+// made ends in SIGSEGV there (seen in glfwCreateWindow), not in the handler
+// above. While a guard lives, a SIGSEGV when GLFW's connection to the
+// X server has been hung up is taken for that: the same line and status 2. Any other
+// SIGSEGV crashes as it would have. Nothing is being recorded yet while
+// contexts are made.
+class ContextMadeWhileDisplayMayGo {
+ public:
+  ContextMadeWhileDisplayMayGo();  // after glfwInit()
+  ~ContextMadeWhileDisplayMayGo();
+  ContextMadeWhileDisplayMayGo(const ContextMadeWhileDisplayMayGo&) = delete;
+  ContextMadeWhileDisplayMayGo& operator=(const ContextMadeWhileDisplayMayGo&) = delete;
+};
+
 }  // namespace rm

@@ -7,6 +7,8 @@
 
 #include <vector>
 
+#include "window/display_lost.h"
+
 namespace rm {
 
 namespace {
@@ -95,6 +97,7 @@ GLXContext glx_context_like(GLFWwindow* window, Display** display) {
 }  // namespace
 
 std::unique_ptr<SharedContext> SharedContext::make(GLFWwindow* window, const char* name) {
+  const ContextMadeWhileDisplayMayGo guard;
   Display* display = nullptr;
   if (GLXContext context = glx_context_like(window, &display)) return std::make_unique<GlxContext>(display, context);
   // A hidden window whose context is made as the window's was (a context of

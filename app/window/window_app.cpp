@@ -1464,6 +1464,10 @@ int run_window(const WindowOptions& options) {
   // The worker starts while GLFW opens the window and the driver its context.
   GlslangWarmUp glslang(kHostVersionLine);
   glfwSetErrorCallback(on_glfw_error);
+  // The display may go away from here on (GLFW's init is dozens of requests),
+  // before the window has anything to write: one line and status 2 too,
+  // not Xlib's exit(1).
+  on_display_lost({});
   if (!glfwInit()) {
     std::cerr << "raymarching: error: cannot open a window ("
               << (glfw_held_error.empty() ? "no display?" : glfw_held_error) << "); `raymarching render` needs none\n";
@@ -1473,7 +1477,10 @@ int run_window(const WindowOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(options.size.x, options.size.y, options.scene.filename().c_str(), nullptr, nullptr);
+  GLFWwindow* window = [&] {
+    const ContextMadeWhileDisplayMayGo guard;
+    return glfwCreateWindow(options.size.x, options.size.y, options.scene.filename().c_str(), nullptr, nullptr);
+  }();
   if (!window) {
     glfwTerminate();
     std::cerr << "raymarching: error: cannot create an OpenGL 4.5 core window"

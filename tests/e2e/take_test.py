@@ -11,7 +11,8 @@ identical videos; the frame the shot names (raymarching:take_frame) matches
 the shot; a replay at another rate and size has the frames that rate asks
 for; a take whose source changed since renders with one warning naming it;
 a take does not load the image module; SIGTERM while a take records closes
-the window with the take written, and so does the X server going away.
+the window with the take written, and so does the X server going away; the
+X server going away while the window opens is one line too.
 """
 import filecmp
 import glob
@@ -160,6 +161,7 @@ def main():
           r.returncode == 0 and len(warnings) == 1 and "take.frag" in warnings[0], r.stderr)
     killed_while_recording(work, scene)
     display_lost_while_recording(work, scene)
+    display_lost_while_opening(scene)
     return summary()
 
 
@@ -203,22 +205,59 @@ def killed_while_recording(work, scene):
           f"status {status}: {open(err).read()[-300:]}")
 
 
-def display_lost_while_recording(work, scene):
-    """The X server going away under the window (it ended, or xkill cut the
-    window off) ended the process in Xlib, with "X connection to :N broken"
-    and status 1: the take being recorded was lost. The window now writes
-    it first, and ends with one line and status 2. The window runs on an X
-    server of its own, which the test ends."""
+def own_x_server(work):
+    """An Xvfb of the test's own, which it may end, once it answers (a window
+    opened before failed to open the display, once in a whole ctest run):
+    the process, its display, an environment that names it, whether it
+    answered, and its log."""
     read_end, write_end = os.pipe()
-    xvfb_log = os.path.join(work, "lost-xvfb.txt")
+    xvfb_log = os.path.join(work, "own-xvfb.txt")
     xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
                             pass_fds=(write_end,), stderr=open(xvfb_log, "w"))
     os.close(write_end)
     display = ":" + os.read(read_end, 16).decode().strip()
     os.close(read_end)
     env = dict(os.environ, DISPLAY=display)
-    # Once it answers: a window opened before failed to open the display (once, in a whole ctest run).
     answers = wait_for(lambda: xdotool("getdisplaygeometry", env=env), timeout=10)
+    return xvfb, display, env, bool(answers), xvfb_log
+
+
+def display_lost_while_opening(scene):
+    """The X server ending while the window opens, before anything is
+    recorded: in GLFW's init Xlib ended the process with status 1 ("XIO:
+    fatal IO error"), and while GLFW made the window's context Mesa's GLX
+    crashed on a reply it did not check (SIGSEGV, in 2 of 11 tries between
+    0.14 and 0.26 s after the start here). At every moment tried, the window
+    must end with status 2 and one line."""
+    wrong = []
+    for delay in [0.05 * i for i in range(1, 17)]:
+        xvfb, display, env, answers, _ = own_x_server(os.path.dirname(scene))
+        err = os.path.join(os.path.dirname(scene), "opening-stderr.txt")
+        proc = subprocess.Popen([BINARY, scene, "--size", "160x90", "--no-ui"], stdout=subprocess.DEVNULL,
+                                stderr=open(err, "w"), env=env)
+        time.sleep(delay)
+        xvfb.kill()
+        xvfb.wait()
+        try:
+            status = proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            status = "none (killed after 30 s)"
+        said = open(err).read()
+        if not (status == 2 and said.count("\n") == 1 and
+                (f"lost the X display {display} " in said or "cannot open a window" in said)):
+            wrong.append(f"after {delay:.2f} s (answered: {answers}): status {status}, {said[-200:]!r}")
+    check("the X server ending while the window opens: status 2 and one line, at each of 16 moments",
+          not wrong, "; ".join(wrong))
+
+
+def display_lost_while_recording(work, scene):
+    """The X server going away under the window (it ended, or xkill cut the
+    window off) ended the process in Xlib, with "X connection to :N broken"
+    and status 1: the take being recorded was lost. The window now writes
+    it first, and ends with one line and status 2. The window runs on an X
+    server of its own, which the test ends."""
+    xvfb, display, env, answers, xvfb_log = own_x_server(work)
     out, err = os.path.join(work, "lost-stdout.txt"), os.path.join(work, "lost-stderr.txt")
     proc = open_window([BINARY, scene, "--size", "160x90", "--no-ui", "-v"], out, err, work, env=env)
     window = wait_for(lambda: "presented generation 1" in open(err).read() and
