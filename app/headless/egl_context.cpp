@@ -4,6 +4,7 @@
 #include <epoxy/gl.h>
 
 #include <dlfcn.h>
+#include <sys/resource.h>
 
 #include <string>
 #include <vector>
@@ -100,6 +101,14 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
   if (const auto kib = address_space_limit_kib()) {
     *error = "no EGL display offers an OpenGL 4.5 core context within this process's address-space limit (ulimit -v " +
              std::to_string(*kib) + " KiB; with Mesa's llvmpipe a render needs about 1 GiB)";
+    return nullptr;
+  }
+  // Nor does Mesa say that it found no file descriptor to open its driver with.
+  rlimit files{};
+  constexpr rlim_t kFewFiles = 64;  // a driver opens a dozen or so
+  if (getrlimit(RLIMIT_NOFILE, &files) == 0 && files.rlim_cur <= kFewFiles) {
+    *error = "no EGL display offers an OpenGL 4.5 core context within this process's limit of open files (ulimit -n " +
+             std::to_string(files.rlim_cur) + ")";
     return nullptr;
   }
   *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";
