@@ -33,6 +33,11 @@ std::string open_error(int error) {
   }
 }
 
+// Whether a failed call's errno is the machine's doing, not the file's.
+bool machine_error(int error) {
+  return error == EMFILE || error == ENFILE || error == ENOMEM || error == EIO || error == ENOBUFS;
+}
+
 // Closes the descriptor on every path out of read_shader_file.
 struct Descriptor {
   int fd;
@@ -72,22 +77,27 @@ std::optional<std::string> unreadable_because(const std::filesystem::path& path)
   return std::nullopt;
 }
 
-std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error) {
-  return read_regular_file(path, kMaxShaderBytes, "shader files", error);
+std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error, bool* machine) {
+  return read_regular_file(path, kMaxShaderBytes, "shader files", error, machine);
 }
 
 std::optional<std::string> read_regular_file(const std::filesystem::path& path, std::uintmax_t limit,
-                                             const char* what, std::string* error) {
+                                             const char* what, std::string* error, bool* machine) {
+  bool ignored = false;
+  if (!machine) machine = &ignored;
+  *machine = false;
   // O_NONBLOCK: opening a FIFO with no writer must not wait for one. What the
   // descriptor is gets decided by fstat, so a file swapped in after a check
   // by name is still caught.
   Descriptor file{open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
   if (file.fd < 0) {
+    *machine = machine_error(errno);
     *error = open_error(errno);
     return std::nullopt;
   }
   struct stat st {};
   if (fstat(file.fd, &st) != 0) {
+    *machine = machine_error(errno);
     *error = open_error(errno);
     return std::nullopt;
   }
@@ -109,6 +119,7 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& path, 
     const ssize_t n = read(file.fd, buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
+      *machine = true;
       *error = std::string("read error: ") + std::strerror(errno);
       return std::nullopt;
     }

@@ -27,13 +27,15 @@ bool is_under(const std::filesystem::path& file, const std::filesystem::path& di
 
 // The bytes of the shader file at `path`: a regular file, refused by its
 // size when it holds more than kMaxShaderBytes. nullopt with *error set in
-// the words above.
-std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error);
+// the words above; *machine, when given, is set where the cause is the
+// machine's (no file descriptor or memory left, an I/O error), not the file's.
+std::optional<std::string> read_shader_file(const std::filesystem::path& path, std::string* error,
+                                            bool* machine = nullptr);
 
 // The same for any regular file, up to `limit` bytes ("... over the N MiB
 // limit for WHAT").
 std::optional<std::string> read_regular_file(const std::filesystem::path& path, std::uintmax_t limit,
-                                             const char* what, std::string* error);
+                                             const char* what, std::string* error, bool* machine = nullptr);
 
 // "is 17000000 bytes, over the 16 MiB limit for shader files"
 std::string over_the_limit(std::uintmax_t bytes);

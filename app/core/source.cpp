@@ -388,14 +388,19 @@ class Preprocessor {
     }
     if (!bytes) {
       const int file = from_file < 0 ? add_file(path) : -1;
-      if (!why.path.empty()) out_.errors.push_back(std::move(why));  // where the cause is: the JSON's line
-      else if (from_file < 0) {
+      if (!why.path.empty()) {
+        out_.errors.push_back(std::move(why));  // where the cause is: the JSON's line
+      } else if (from_file < 0) {
         // The scene itself could not be read: nothing was checked, as with
         // a scene missing from the command line (an I/O error, status 2).
         error(file, 0, 0, "cannot read scene: " + why.message);
         out_.errors.back().unchecked = true;
+      } else {
+        // Missing, or not a file, it is the shader's error; a machine's
+        // failure (no descriptor left) leaves the shader unchecked.
+        error(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + why.message);
+        out_.errors.back().unchecked = why.unchecked;
       }
-      else error(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + why.message);
       return;
     }
     total_bytes_ += bytes->size();
@@ -804,7 +809,7 @@ const char* to_string(ShaderKind kind) {
 FileSystem disk_file_system() {
   FileSystem disk;
   disk.read = [](const fs::path& path, Diagnostic* why) {
-    return read_shader_file(path, &why->message);
+    return read_shader_file(path, &why->message, &why->unchecked);
   };
   disk.exists = [](const fs::path& path) {
     std::error_code ec;

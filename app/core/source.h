@@ -69,6 +69,8 @@ struct FileSystem {
   // The file's bytes, or nullopt with why->message set ("no such file", "is
   // a directory", ...). why->path is set only where the cause lies in another
   // file, with its place: a pass of a Shadertoy JSON that does not parse.
+  // why->unchecked is set where the machine failed, not the file (no
+  // descriptor left).
   std::function<std::optional<std::string>(const fs::path&, Diagnostic* why)> read;
   std::function<bool(const fs::path&)> exists;
   // What the files themselves warn about, read anew at each build (a JSON's

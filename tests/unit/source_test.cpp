@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -592,6 +594,38 @@ TEST(Source, InMemoryFileSystemIsUsedForEveryRead) {
   Source s = preprocess("/mem/scene.frag", {}, memory);
   ASSERT_TRUE(s.ok()) << join(s.errors);
   EXPECT_EQ(origin_of(s, "mem_marker"), std::make_pair(std::string("/mem/x.glsl"), 1));
+}
+
+// An include the machine could not read (no file descriptor left) leaves
+// the shader unchecked, an I/O error (status 2); a missing one is the
+// shader's error (status 1), as for a C compiler.
+TEST(SourceDeathTest, AnIncludeTheMachineCouldNotReadLeavesTheShaderUnchecked) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  TempDir dir;
+  write_file(dir / "x.glsl", "float x_marker;\n");
+  const fs::path scene = dir / "scene.frag";
+  FileSystem files = disk_file_system();
+  files.read = [scene, disk = files.read](const fs::path& path, Diagnostic* why) -> std::optional<std::string> {
+    if (path == scene) return "#include \"x.glsl\"\n#include \"gone.glsl\"\n" + std::string(kMain);
+    return disk(path, why);
+  };
+  files.exists = [](const fs::path&) { return true; };
+  const Source missing = preprocess(scene, {}, files);
+  ASSERT_EQ(missing.errors.size(), 1u) << join(missing.errors);
+  EXPECT_NE(missing.errors[0].message.find("gone.glsl': no such file"), std::string::npos) << join(missing.errors);
+  EXPECT_EQ(build_failure_status(missing.errors), kExitShaderError);
+  EXPECT_EXIT(
+      {
+        rlimit few{};
+        few.rlim_cur = few.rlim_max = 64;
+        setrlimit(RLIMIT_NOFILE, &few);
+        while (open("/dev/null", O_RDONLY | O_CLOEXEC) >= 0) {
+        }
+        const Source starved = preprocess(scene, {}, files);
+        std::fputs(join(starved.errors).c_str(), stderr);
+        std::_Exit(build_failure_status(starved.errors));
+      },
+      testing::ExitedWithCode(kExitUsage), "scene.frag:1:10: error: cannot read include '.*x.glsl': Too many open files");
 }
 
 TEST(Source, ChannelPragmaNamesADefaultImageRelativeToItsFile) {
