@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -65,6 +66,13 @@ struct Take {
 std::optional<std::filesystem::path> write_take(const std::filesystem::path& path, const Take& take,
                                                 std::string* error);
 std::optional<Take> read_take(const std::filesystem::path& path, std::string* error);
+
+// The file's text and back (core/take_format.cpp): paths are stored relative
+// to `folder`, the take's own, where they lie below it. parse_take checks
+// every number against what it is read into, and says what it refuses in
+// one line (without the file's name).
+std::string take_text(const Take& take, const std::filesystem::path& folder);
+std::optional<Take> parse_take(std::string_view text, const std::filesystem::path& folder, std::string* error);
 
 // What identifies a pass's source across runs: a fingerprint of the lines
 // that come from files (the pass and its includes), not of the host's lines
