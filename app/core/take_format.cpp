@@ -208,8 +208,9 @@ std::optional<Take> parse_take(std::string_view text, const std::filesystem::pat
       for (const auto& k : field<json>(line, "k", json::array()))
         state.keys.push_back({int_of(k.at(0)), int_of(k.at(1)) != 0});
       const json set = field<json>(line, "u", json::object());
-      for (const auto& [name, value] : set.items()) {
-        const std::string text = value.get<std::string>();
+      for (const auto& item : set.items()) {
+        const std::string& name = item.key();
+        const std::string text = item.value().get<std::string>();
         auto it = std::find_if(state.uniforms.begin(), state.uniforms.end(),
                                [&](const UniformValue& u) { return u.name == name; });
         if (it == state.uniforms.end()) state.uniforms.push_back({name, uniform_numbers(text), text});
