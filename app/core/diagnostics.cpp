@@ -67,6 +67,14 @@ int count_errors(const Diagnostics& diags) {
   }));
 }
 
+Diagnostic scene_unreadable(std::string path, const std::string& why) {
+  Diagnostic d;
+  d.path = std::move(path);
+  d.message = "cannot read scene: " + why;
+  d.unchecked = true;
+  return d;
+}
+
 int build_failure_status(const Diagnostics& diags) {
   const bool unchecked = std::any_of(diags.begin(), diags.end(), [](const Diagnostic& d) { return d.unchecked; });
   return unchecked ? kExitUsage : kExitShaderError;

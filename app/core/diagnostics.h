@@ -34,6 +34,10 @@ struct Diagnostic {
 
 using Diagnostics = std::vector<Diagnostic>;
 
+// The scene at `path` could not be read (`why`, the system's words): nothing
+// was checked, as with a scene missing from the command line (status 2).
+Diagnostic scene_unreadable(std::string path, const std::string& why);
+
 int count_errors(const Diagnostics& diags);
 // The exit status for a shader that failed to build with `diags`: 1, or 2
 // where the host could not check it (an error of the machine, which a farm

@@ -422,9 +422,7 @@ FileSystem shadertoy_file_system(const std::filesystem::path& json_path, const s
     if (!text) {
       cache->text.clear();
       cache->project.reset();
-      cache->error = Diagnostic{};
-      cache->error.message = "cannot read scene: " + error;
-      cache->error.unchecked = true;
+      cache->error = scene_unreadable(root.string(), error);
     } else if (!cache->project || *text != cache->text) {
       cache->project = read_shadertoy_json(*text, media_dir, &cache->error);
       cache->text = std::move(*text);

@@ -391,10 +391,7 @@ class Preprocessor {
       if (!why.path.empty()) {
         out_.errors.push_back(std::move(why));  // where the cause is: the JSON's line
       } else if (from_file < 0) {
-        // The scene itself could not be read: nothing was checked, as with
-        // a scene missing from the command line (an I/O error, status 2).
-        error(file, 0, 0, "cannot read scene: " + why.message);
-        out_.errors.back().unchecked = true;
+        out_.errors.push_back(scene_unreadable(out_.files[static_cast<size_t>(file)].string(), why.message));
       } else {
         // Missing, or not a file, it is the shader's error; a machine's
         // failure (no descriptor left) leaves the shader unchecked.
