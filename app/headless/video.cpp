@@ -96,7 +96,10 @@ std::unique_ptr<VideoEncoder> VideoEncoder::start(const fs::path& path, const Vi
   }
   const Container& c = *container_of(path);
   const fs::path temp = temporary_sibling(path);
-  std::vector<std::string> args = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y",
+  // -xerror: without it ffmpeg 5 exits 0 when its last write fails (a full
+  // disk: "Error writing trailer ... No space left on device"), and a cut
+  // video would be renamed into place.
+  std::vector<std::string> args = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-xerror", "-nostdin", "-y",
                                    "-f", "rawvideo", "-pix_fmt", "rgba",
                                    "-video_size", std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
                                    "-framerate", format_number(settings.fps), "-i", "pipe:0"};
@@ -232,7 +235,12 @@ std::string VideoEncoder::ffmpeg_said() const {
   }
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
   const size_t line = text.find_last_of('\n');
-  return line == std::string::npos ? text : text.substr(line + 1);
+  if (line != std::string::npos) text.erase(0, line + 1);
+  // ffmpeg names the file it wrote, the temporary one: the person named the other.
+  const std::string temp = temp_.string(), path = path_.string();
+  for (size_t at = text.find(temp); at != std::string::npos; at = text.find(temp, at + path.size()))
+    text.replace(at, temp.size(), path);
+  return text;
 }
 
 }  // namespace rm

@@ -3,14 +3,18 @@
 // 1 GB (30 s and 2 GB sanitized), and never crashes or hangs. A case that
 // checks clean is rendered too, so the GL driver sees it as the window would.
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <signal.h>
+#include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -521,6 +525,53 @@ TEST_F(Pathological, NoThreadToBeHadIsOneLine) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
 }
 #endif
+
+// A full disk, for real: a 64 KiB tmpfs, mounted in a mount namespace of
+// this test process's own (nothing outside sees it). ffmpeg 5 exits 0 when
+// its last write fails ("Error writing trailer of ...: No space left on
+// device"), and the cut video was renamed into place with status 0. Every
+// output must now end in status 2 and one line that names the file the
+// person asked for, and leave nothing on the disk: no temporary, no part of
+// a file, and a file already there keeps its bytes.
+TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
+  if (unshare(CLONE_NEWNS) != 0 || mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0)
+    GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
+  write_file(dir_ / "white.frag", kMain);
+  write_file(dir_ / "noise.frag",  // a picture that does not compress
+             "void mainImage(out vec4 c, in vec2 f) { c = vec4(fract(sin(dot(f, vec2(12.9898, 78.233)) + "
+             "iTime) * 43758.5453)); }\n");
+  const std::filesystem::path disk = dir_ / "disk";
+  std::filesystem::create_directory(disk);
+  ASSERT_EQ(mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=64k"), 0) << std::strerror(errno);
+  struct Unmount {
+    std::filesystem::path at;
+    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
+  } unmount{disk};
+  write_file(disk / "kept.png", "the bytes of an older picture");
+  const std::vector<std::pair<std::string, std::string>> outputs = {
+      {"out.mp4", "--size 640x360 --frames 40"},
+      {"out.webm", "--size 640x360 --frames 40"},
+      {"out.gif", "--size 320x180 --frames 20"},
+      {"out.exr", "--size 320x180"},
+      {"kept.png", "--size 320x180"},
+      {"frame%03d.png", "--size 320x180 --frames 3"},
+  };
+  for (const auto& [out, args] : outputs) {
+    SCOPED_TRACE("render -o " + out + " " + args);
+    const test::Outcome r = test::run_binary("render " + path("noise.frag") + " -o " + (disk / out).string() + " " + args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    const std::string named = (disk / (out.find('%') != std::string::npos ? "frame000.png" : out)).string();
+    EXPECT_NE(r.err.find(named + "':"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find(".tmp"), std::string::npos) << r.err;  // not the temporary's name
+    std::vector<std::string> left;
+    for (const auto& entry : std::filesystem::directory_iterator(disk)) left.push_back(entry.path().filename().string());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, std::vector<std::string>{"kept.png"});
+    EXPECT_EQ(test::read_file(disk / "kept.png"), "the bytes of an older picture");
+  }
+}
 
 // A small stack limit (ulimit -s 32, in KiB) is the main thread's in each
 // process the host starts. The glslang worker built glslang's built-ins and
