@@ -40,9 +40,27 @@ class OiioCodecs final : public ImageCodecs {
 
   bool can_encode(const fs::path& path) const override {
     auto out = OIIO::ImageOutput::create(path.string());
-    const bool yes = out && out->supports("ioproxy");  // the host encodes in memory
+    const bool yes = out && out->supports("ioproxy") && reads_back(path);  // the host encodes in memory
     if (!out) OIIO::geterror();  // clear the pending message
     return yes;
+  }
+
+  // Whether a small picture written in `path`'s format reads back. Debian
+  // 12's OpenImageIO writes JPEG 2000 files of 77 bytes, whatever the
+  // picture, that neither it nor any other reader can open ("Expected a SOC
+  // marker"; oiiotool's own are the same): such a format is not offered.
+  bool reads_back(const fs::path& path) const {
+    const unsigned char rgba[2 * 2 * 4] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+    std::vector<unsigned char> bytes;
+    std::string error;
+    if (!encode(path, {2, 2, rgba, false}, {}, &bytes, &error)) return false;
+    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+    auto in = OIIO::ImageInput::open(path.string(), nullptr, &memory);
+    float pixels[2 * 2 * 4];
+    const bool ok = in && in->spec().width == 2 && in->spec().height == 2 &&
+                    in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels);
+    OIIO::geterror();
+    return ok;
   }
 
   std::vector<std::string> encodable_extensions() const override {
@@ -50,7 +68,7 @@ class OiioCodecs final : public ImageCodecs {
     return list;
   }
 
-  static std::vector<std::string> find_encodable_extensions() {
+  std::vector<std::string> find_encodable_extensions() const {
     // OIIO's "format:ext,ext;format:ext" list.
     std::vector<std::string> out;
     const std::string formats = OIIO::get_string_attribute("extension_list");
@@ -64,7 +82,7 @@ class OiioCodecs final : public ImageCodecs {
       const std::string format = entry.substr(0, colon), ext = entry.substr(colon + 1, entry.find(',', colon) - colon - 1);
       if (format == "null" || ext.empty()) continue;  // OIIO's writer that writes nothing
       auto writer = OIIO::ImageOutput::create(format);
-      if (writer && writer->supports("ioproxy")) out.push_back(ext);
+      if (writer && writer->supports("ioproxy") && reads_back("probe." + ext)) out.push_back(ext);
     }
     OIIO::geterror();  // the formats without a writer leave a message behind
     return out;
@@ -73,13 +91,16 @@ class OiioCodecs final : public ImageCodecs {
   bool encode(const fs::path& path, const PixelsToEncode& pixels, const Metadata& metadata,
               std::vector<unsigned char>* bytes, std::string* error) const override {
     const OIIO::TypeDesc type = pixels.floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-    OIIO::ImageSpec spec(pixels.width, pixels.height, 4, type);
-    for (const auto& [key, value] : metadata) spec.attribute(key, value);
     OIIO::Filesystem::IOVecOutput memory(*bytes);
     auto out = OIIO::ImageOutput::create(path.string());
+    // A format without alpha (HDR, PNM) refuses four channels: it gets each
+    // pixel's first three.
+    const int channels = out && !out->supports("alpha") ? 3 : 4;
+    OIIO::ImageSpec spec(pixels.width, pixels.height, channels, type);
+    for (const auto& [key, value] : metadata) spec.attribute(key, value);
     bool ok = out && out->set_ioproxy(&memory) && out->open(path.string(), spec);
     if (ok) {
-      ok = out->write_image(type, pixels.data);
+      ok = out->write_image(type, pixels.data, static_cast<OIIO::stride_t>(4 * type.size()));
       ok = out->close() && ok;
     }
     if (!ok) *error = out ? out->geterror() : OIIO::geterror();

@@ -64,6 +64,33 @@ TEST(Capture, PngClampsExrKeepsRawFloats) {
   EXPECT_NEAR(png[1], 0.25f, 0.5f / 255);
 }
 
+// Every format the host offers writes a picture that reads back. HDR and
+// PNM take no alpha, and were refused after the render ("HDR can only
+// support 3-channel images"); Debian's OpenImageIO writes JPEG 2000 files
+// that nothing reads, so .jp2 is not offered.
+TEST(Capture, EveryOfferedFormatWritesAPictureThatReadsBack) {
+  TempDir dir;
+  const std::vector<std::string> formats = image_codecs()->encodable_extensions();
+  EXPECT_GE(formats.size(), 8u);
+  for (const std::string& ext : formats) {
+    SCOPED_TRACE("." + ext);
+    Image flat{4, 2, {}};  // one colour: lossy formats keep it
+    for (int i = 0; i < 8; ++i) flat.rgba.insert(flat.rgba.end(), {0.25f, 0.5f, 0.75f, 1.0f});
+    std::string error;
+    const fs::path path = dir / ("a." + ext);
+    ASSERT_TRUE(write_image(path, flat, {}, Overwrite::Replace, &error)) << error;
+    auto in = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(in) << OIIO::geterror();
+    const OIIO::ImageSpec spec = in->spec();
+    ASSERT_EQ(spec.width, 4);
+    ASSERT_EQ(spec.height, 2);
+    ASSERT_GE(spec.nchannels, 3);
+    std::vector<float> px(static_cast<size_t>(spec.image_pixels() * spec.nchannels));
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data())) << in->geterror();
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[static_cast<size_t>(c)], 0.25f * (c + 1), 0.03f) << "channel " << c;
+  }
+}
+
 TEST(Capture, MetadataRoundTrips) {
   TempDir dir;
   std::string error;
