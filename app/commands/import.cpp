@@ -28,6 +28,11 @@ int ImportCommand::run() const {
   // At the JSON, as a build of it says them.
   for (const Diagnostic& warning : project->warnings_at(json_)) std::cerr << warning.str() << '\n';
   const std::filesystem::path dir = dir_;
+  // The folders this import makes, deepest first: taken away again if it fails.
+  std::vector<std::filesystem::path> made_dirs;
+  for (std::filesystem::path at = std::filesystem::absolute(dir).lexically_normal();
+       !at.empty() && at != at.parent_path() && !exists_on_disk(at); at = at.parent_path())
+    made_dirs.push_back(at);
   std::error_code made, probed;
   std::filesystem::create_directories(dir, made);
   if (!std::filesystem::is_directory(dir, probed)) {
@@ -40,8 +45,15 @@ int ImportCommand::run() const {
   for (const auto& [name, text] : files)
     if (!force_ && exists_on_disk(dir / name))
       throw UsageError{"'" + (dir / name).string() + "' exists (--force replaces it)"};
-  for (const auto& [name, text] : files)  // each whole or not at all
-    if (!write_whole_file(dir / name, text, Overwrite::Replace, &error)) throw UsageError{error};
+  std::vector<std::pair<std::filesystem::path, std::string>> writes;
+  for (const auto& [name, text] : files) writes.emplace_back(dir / name, text);
+  if (!write_whole_files(writes, &error)) {  // a full disk: all of them or none
+    for (const std::filesystem::path& made_dir : made_dirs) {
+      std::error_code ec;
+      std::filesystem::remove(made_dir, ec);  // only if empty
+    }
+    throw UsageError{error};
+  }
   std::cout << (dir / ShadertoyProject::kImage).string() << '\n';
   return kExitOk;
 }

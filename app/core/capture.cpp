@@ -180,6 +180,31 @@ std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view 
   return std::nullopt;
 }
 
+bool write_whole_files(const std::vector<std::pair<fs::path, std::string>>& files, std::string* error) {
+  std::vector<fs::path> temps;
+  auto fail = [&](const fs::path& path, const std::string& why) {
+    *error = "cannot write '" + path.string() + "': " + why;
+    for (const fs::path& temp : temps) {
+      std::error_code ec;
+      fs::remove(temp, ec);
+    }
+    return false;
+  };
+  for (const auto& [path, bytes] : files) {
+    temps.push_back(temporary_sibling(path));
+    if (int err = write_durably(temps.back(), bytes); err != 0) return fail(path, std::strerror(err));
+  }
+  for (size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps[i], files[i].first, ec);
+    if (ec) {
+      temps.erase(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(i) + 1);  // those are in place
+      return fail(files[i].first, ec.message());
+    }
+  }
+  return true;
+}
+
 Metadata frame_metadata(const fs::path& scene, const SourceOptions& source, const FrameInputs& in, int samples,
                         const MotionBlur& motion) {
   Metadata out{{"raymarching:scene", fs::absolute(scene).lexically_normal().string()}};

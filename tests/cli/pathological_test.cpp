@@ -532,7 +532,8 @@ TEST_F(Pathological, NoThreadToBeHadIsOneLine) {
 // device"), and the cut video was renamed into place with status 0. Every
 // output must now end in status 2 and one line that names the file the
 // person asked for, and leave nothing on the disk: no temporary, no part of
-// a file, and a file already there keeps its bytes.
+// a file, and a file already there keeps its bytes. An import wrote the
+// files of a project that fitted and left the rest out.
 TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
   if (unshare(CLONE_NEWNS) != 0 || mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0)
     GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
@@ -571,6 +572,15 @@ TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
     EXPECT_EQ(left, std::vector<std::string>{"kept.png"});
     EXPECT_EQ(test::read_file(disk / "kept.png"), "the bytes of an older picture");
   }
+  // A project's files, with one page of the disk left: all of them or none,
+  // and the folders the import made are gone again.
+  write_file(disk / "filler", std::string(14 * 4096, 'x'));
+  const test::Outcome r = test::run_binary("import " + std::string(RM_TEST_DATA_DIR) + "/shadertoy/cube_pass.json " +
+                                           (disk / "made/project").string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(disk / "made")) << "a half-imported project";
 }
 
 // A small stack limit (ulimit -s 32, in KiB) is the main thread's in each

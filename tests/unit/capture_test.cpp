@@ -191,6 +191,27 @@ TEST(Capture, FullDiskPartWayLeavesTheOldFileAndNoTemporary) {
   }
 }
 
+// Files written together (an import's project): when the last cannot be
+// written, none is, the first keeps its old bytes, and no temporary is left.
+TEST(Capture, FilesWrittenTogetherAreAllWrittenOrNone) {
+  TempDir dir;
+  test::write_file(dir / "image.frag", "old image");
+  std::string error;
+  bool written = false;
+  {
+    FileSizeLimit full_disk(16384);
+    written = write_whole_files({{dir / "image.frag", "new image"}, {dir / "buffer_a.frag", std::string(20000, 'x')}},
+                                &error);
+  }
+  EXPECT_FALSE(written);
+  EXPECT_NE(error.find("cannot write '" + (dir / "buffer_a.frag").string() + "'"), std::string::npos) << error;
+  EXPECT_EQ(test::read_file(dir / "image.frag"), "old image");
+  EXPECT_EQ(files_in(dir.path()), 1) << "a temporary or a part was left";
+  ASSERT_TRUE(write_whole_files({{dir / "image.frag", "new image"}, {dir / "buffer_a.frag", "a"}}, &error)) << error;
+  EXPECT_EQ(test::read_file(dir / "image.frag"), "new image");
+  EXPECT_EQ(test::read_file(dir / "buffer_a.frag"), "a");
+}
+
 TEST(SequencePath, ExpandsOnePrintfCounter) {
   EXPECT_EQ(sequence_path("out/frame_%04d.png", 12), std::filesystem::path("out/frame_0012.png"));
   EXPECT_EQ(sequence_path("f%d.exr", 3), std::filesystem::path("f3.exr"));
