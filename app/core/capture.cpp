@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -117,7 +118,11 @@ std::optional<std::string> check_output_directory(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) return "'" + path.string() + "': directory '" + dir.string() + "' does not exist";
   if (!fs::is_directory(dir, ec)) return "'" + path.string() + "': '" + dir.string() + "' is not a directory";
-  if (access(dir.c_str(), W_OK) != 0) return "'" + path.string() + "': directory '" + dir.string() + "' is not writable";
+  if (access(dir.c_str(), W_OK) != 0) {
+    std::string why = std::strerror(errno);  // "Permission denied", "Read-only file system"
+    if (!why.empty()) why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
+    return "'" + path.string() + "': directory '" + dir.string() + "' is not writable: " + why;
+  }
   return std::nullopt;
 }
 

@@ -526,6 +526,13 @@ TEST_F(Pathological, NoThreadToBeHadIsOneLine) {
 }
 #endif
 
+// Whether this test process now has a mount namespace of its own, where a
+// test may mount a file system that nothing outside sees (needs root).
+bool own_mount_namespace() {
+  static const bool own = unshare(CLONE_NEWNS) == 0 && mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) == 0;
+  return own;
+}
+
 // A full disk, for real: a 64 KiB tmpfs, mounted in a mount namespace of
 // this test process's own (nothing outside sees it). ffmpeg 5 exits 0 when
 // its last write fails ("Error writing trailer of ...: No space left on
@@ -535,8 +542,7 @@ TEST_F(Pathological, NoThreadToBeHadIsOneLine) {
 // a file, and a file already there keeps its bytes. An import wrote the
 // files of a project that fitted and left the rest out.
 TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
-  if (unshare(CLONE_NEWNS) != 0 || mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0)
-    GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
+  if (!own_mount_namespace()) GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
   write_file(dir_ / "white.frag", kMain);
   write_file(dir_ / "noise.frag",  // a picture that does not compress
              "void mainImage(out vec4 c, in vec2 f) { c = vec4(fract(sin(dot(f, vec2(12.9898, 78.233)) + "
@@ -581,6 +587,35 @@ TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(std::filesystem::exists(disk / "made")) << "a half-imported project";
+}
+
+// A read-only file system, for real (root may write anywhere else, so the
+// tests stood a file in for it): each output is refused before anything is
+// drawn, in one line that says why.
+TEST_F(Pathological, AReadOnlyDiskIsRefusedWithItsReason) {
+  if (!own_mount_namespace()) GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
+  write_file(dir_ / "white.frag", kMain);
+  const std::filesystem::path disk = dir_ / "read-only";
+  std::filesystem::create_directory(disk);
+  ASSERT_EQ(mount("tmpfs", disk.c_str(), "tmpfs", MS_RDONLY, "size=64k"), 0) << std::strerror(errno);
+  struct Unmount {
+    std::filesystem::path at;
+    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
+  } unmount{disk};
+  const std::string render = "render " + path("white.frag") + " -o " + disk.string();
+  const std::vector<std::pair<std::string, std::string>> commands = {
+      {render + "/a.png --size 16x9", "is not writable: read-only file system"},
+      {render + "/a.mp4 --size 16x8 --frames 2", "is not writable: read-only file system"},
+      {"import " + std::string(RM_TEST_DATA_DIR) + "/shadertoy/cube_pass.json " + (disk / "p").string(),
+       "cannot create the directory: read-only file system"},
+  };
+  for (const auto& [command, says] : commands) {
+    SCOPED_TRACE(command);
+    const test::Outcome r = test::run_binary(command);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  }
 }
 
 // A small stack limit (ulimit -s 32, in KiB) is the main thread's in each
