@@ -5,6 +5,12 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <mutex>
+#include <string>
+
 #include "core/image_codecs.h"
 
 namespace rm {
@@ -50,6 +56,18 @@ class OiioCodecs final : public ImageCodecs {
   // picture, that neither it nor any other reader can open ("Expected a SOC
   // marker"; oiiotool's own are the same): such a format is not offered.
   bool reads_back(const fs::path& path) const {
+    // Once per extension: a sequence asks before each of its frames.
+    static std::mutex mutex;
+    static std::map<std::string, bool> known;
+    const std::lock_guard<std::mutex> lock(mutex);
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    auto [it, fresh] = known.try_emplace(ext, false);
+    if (fresh) it->second = probe_reads_back(path);
+    return it->second;
+  }
+
+  bool probe_reads_back(const fs::path& path) const {
     const unsigned char rgba[2 * 2 * 4] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
     std::vector<unsigned char> bytes;
     std::string error;
