@@ -102,7 +102,7 @@ class TakeReplay {
  public:
   // fps 0: one frame per recorded frame, at the recorded times.
   TakeReplay(const Take& take, double fps) : take_(take), fps_(fps) {}
-  int frames() const;                 // how many frames the replay has
+  int frames() const;                 // how many frames the replay has: the last at or past the take's end
   double wall(int index) const;       // when replay frame `index` falls in the take
   // The recorded frames crossed by replay frame `index`: those after the
   // previous replay frame's time, up to and including this one's.

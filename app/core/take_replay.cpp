@@ -55,8 +55,11 @@ FrameInputs take_inputs_at(const Take& take, double wall, glm::ivec2 size, const
 
 int TakeReplay::frames() const {
   if (fps_ <= 0) return static_cast<int>(take_.frames.size());
-  // A take of hours at a high rate is more frames than an int holds: say the most.
-  const double count = std::floor(take_.duration() * fps_ + 1e-9) + 1;
+  // Up to the take's end or just past it, so that the last replay frame
+  // crosses the last recorded frames (a key pressed in the take's last
+  // 1/fps s happens too). A take of hours at a high rate is more frames
+  // than an int holds: say the most.
+  const double count = std::ceil(take_.duration() * fps_ - 1e-9) + 1;
   return count < INT_MAX ? static_cast<int>(count) : INT_MAX;
 }
 

@@ -106,6 +106,17 @@ TEST_F(Take, AtAnotherRateInterpolatesBetweenTheRecordedFrames) {
   EXPECT_TRUE(pixel("b_%d.exr", 5).empty());
 }
 
+// 0.2 s at 3 fps is not a whole number of steps: a last frame past the end
+// shows how the take ended (iTime, the drag, the uniform set in its last
+// frame), where the replay used to stop at 0 s and lose them.
+TEST_F(Take, AtARateThatDoesNotDivideItsSpanTheReplayReachesItsEnd) {
+  const test::Outcome r = render("-o " + (dir_ / "e_%d.exr").string() + " --size 8x4 --fps 3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_pixel(pixel("e_%d.exr", 0), {0.25f, 0.25f, 0.25f, 0.10f});
+  expect_pixel(pixel("e_%d.exr", 1), {0.75f, 0.75f, 0.75f, 0.11f});
+  EXPECT_TRUE(pixel("e_%d.exr", 2).empty());
+}
+
 TEST_F(Take, ASliceIsTheSameFramesOfTheWholeReplay) {
   ASSERT_EQ(render("-o " + (dir_ / "w_%d.exr").string() + " --fps 20").status, 0);
   const test::Outcome r = render("-o " + (dir_ / "s_%d.exr").string() + " --fps 20 --frame-range 2:3");

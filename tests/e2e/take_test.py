@@ -17,6 +17,7 @@ X server going away while the window opens is one line too.
 import filecmp
 import glob
 import json
+import math
 import os
 import re
 import shutil
@@ -144,12 +145,12 @@ def main():
         check("two video replays are identical files", all(map(os.path.exists, videos)) and
               filecmp.cmp(*videos, shallow=False))
 
-    # At another rate: as many frames as the take's span asks for.
+    # At another rate: as many frames as the take's span asks for, the last at its end or just past it.
     span = lines[-1]["w"]
     os.mkdir(os.path.join(work, "rate"))
     r = render("--take", take_path, "-o", os.path.join(work, "rate", "f_%04d.png"), "--fps", "10", "--size", "80x45")
     resampled = glob.glob(os.path.join(work, "rate", "f_*.png"))
-    check("--fps resamples the take", r.returncode == 0 and len(resampled) == int(span * 10 + 1e-9) + 1,
+    check("--fps resamples the take", r.returncode == 0 and len(resampled) == math.ceil(span * 10 - 1e-9) + 1,
           f"{len(resampled)} frames for {span} s; {r.stderr}")
 
     # The scene saved since: still renders, with one warning that names it.
