@@ -74,11 +74,12 @@ int write_durably(const fs::path& path, std::string_view bytes) {
 
 }  // namespace
 
-std::string writable_image_extensions() {
+std::string writable_image_extensions(bool (*written_otherwise)(const fs::path&)) {
   const auto codecs = image_codecs();
   if (auto why = codecs->unavailable()) return *why;
   std::string out;
-  for (const std::string& ext : codecs->encodable_extensions()) out += (out.empty() ? "." : ", .") + ext;
+  for (const std::string& ext : codecs->encodable_extensions())
+    if (!written_otherwise || !written_otherwise("x." + ext)) out += (out.empty() ? "." : ", .") + ext;
   return out;
 }
 

@@ -40,8 +40,9 @@ std::string file_timestamp();
 // where a file is written before it is renamed to `path`.
 fs::path temporary_sibling(const fs::path& path);
 
-// The extensions write_image can write, as ".png, .exr, ..." (from OIIO).
-std::string writable_image_extensions();
+// The extensions write_image can write, as ".png, .exr, ..." (from OIIO),
+// but those a caller writes otherwise (`render`'s videos: its .gif is one).
+std::string writable_image_extensions(bool (*written_otherwise)(const fs::path&) = nullptr);
 
 // Writes `image` to `path`. With Overwrite::Never an existing file is kept
 // and "-1", "-2", ... is added before the extension. Returns the path

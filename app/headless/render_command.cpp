@@ -14,6 +14,7 @@
 #include "core/lexing.h"
 #include "core/frame_graph.h"
 #include "core/glslang_client.h"
+#include "core/image_codecs.h"
 #include "core/inputs.h"
 #include "core/project.h"
 #include "core/renderer.h"
@@ -68,6 +69,17 @@ std::optional<std::filesystem::path> sequence_path(const std::filesystem::path& 
 
 namespace {
 
+// A file `render` cannot write, with what it can: pictures, and videos
+// (a .gif is one here); nullopt for a picture it can write.
+std::optional<std::string> unknown_output_type(const fs::path& out) {
+  const auto codecs = image_codecs();
+  if (codecs->unavailable() || (!out.extension().empty() && codecs->can_encode(out))) return std::nullopt;
+  const std::string can =
+      " (pictures: " + writable_image_extensions(is_video_path) + "; videos: " + video_extensions() + ")";
+  if (out.extension().empty()) return "'" + out.string() + "' has no extension to choose a format" + can;
+  return "'" + out.string() + "': cannot write files of type '" + out.extension().string() + "'" + can;
+}
+
 int render_frames(const RenderRequest& req) {
   // Everything that can be known wrong is reported before any GL work.
   const bool sequence = req.frames > 0;
@@ -113,6 +125,7 @@ int render_frames(const RenderRequest& req) {
       return fail("'" + req.out.string() + "': --frames needs a counter such as %04d in the output name (or a video: " +
                       video_extensions() + ")",
                   kExitUsage);
+    if (auto problem = unknown_output_type(*first_out)) return fail(*problem, kExitUsage);
     if (auto problem = check_output_path(*first_out)) return fail(*problem, kExitUsage);
   }
   for (size_t i = 0; i < req.channels.size(); ++i) {

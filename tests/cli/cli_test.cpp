@@ -611,9 +611,12 @@ TEST_F(Cli, UsageAndIoErrorsAreExitTwoWithOneLine) {
       {"render " + g + " -o " + out + " --date 2020-01-01T12:00:60.5", "--date '2020-01-01T12:00:60.5': no such time of day"},
       {"render " + g + " -o " + out + " --time soon", "--time 'soon'"},
       {"render " + g + " -o " + out + " --time nan", "--time 'nan'"},
-      // The formats named are the ones that work: .jpg among them, not only .png and .exr.
-      {"render " + g + " -o " + (dir_ / "o.xyz").string(), "cannot write images of type '.xyz' (.exr, .tif, .jpg"},
-      {"render " + g + " -o " + (dir_ / "noext").string(), "has no extension to choose an image format (.exr"},
+      // The formats named are the ones that work: .jpg among them, not only .png and .exr;
+      // and .gif among the videos, which render writes it as, not among the pictures.
+      {"render " + g + " -o " + (dir_ / "o.xyz").string(), "cannot write files of type '.xyz' (pictures: .exr, .tif, .jpg, .bmp, .dpx, .hdr"},
+      {"render " + g + " -o " + (dir_ / "o.xyz").string(), "; videos: .mp4, .mov, .webm, .gif)"},
+      {"render " + g + " -o " + (dir_ / "noext").string(), "has no extension to choose a format (pictures: .exr"},
+      {"render " + g + " -o " + (dir_ / "f_%04d.xyz").string() + " --frames 2", "f_0000.xyz': cannot write files of type '.xyz' (pictures"},
       {"render " + g + " -o " + (dir_ / "nodir/o.png").string(), "does not exist"},
       {"render " + g + " -o " + (dir_ / "frame.png").string() + " --frames 3", "counter"},
       {"render " + g + " -o " + out + " --channel0 " + (dir_ / "none.png").string(), "--channel0 '" + (dir_ / "none.png").string() + "': no such file"},
