@@ -1,6 +1,5 @@
 #include "commands/import.h"
 
-#include <cctype>
 #include <iostream>
 
 #include "commands/cli_options.h"
@@ -36,8 +35,7 @@ int ImportCommand::run() const {
   std::error_code made, probed;
   std::filesystem::create_directories(dir, made);
   if (!std::filesystem::is_directory(dir, probed)) {
-    std::string why = exists_on_disk(dir) ? "a file of that name is there" : made ? made.message() : "";
-    if (!why.empty()) why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
+    const std::string why = exists_on_disk(dir) ? "a file of that name is there" : made ? after_colon(made.message()) : "";
     throw UsageError{"'" + dir_ + "': cannot create the directory" + (why.empty() ? "" : ": " + why)};
   }
   // Nothing is written unless everything can be: no half-imported project.
@@ -45,7 +43,7 @@ int ImportCommand::run() const {
   for (const auto& [name, text] : files)
     if (!force_ && exists_on_disk(dir / name))
       throw UsageError{"'" + (dir / name).string() + "' exists (--force replaces it)"};
-  std::vector<std::pair<std::filesystem::path, std::string>> writes;
+  std::vector<std::pair<std::filesystem::path, std::string_view>> writes;
   for (const auto& [name, text] : files) writes.emplace_back(dir / name, text);
   if (!write_whole_files(writes, &error)) {  // a full disk: all of them or none
     for (const std::filesystem::path& made_dir : made_dirs) {

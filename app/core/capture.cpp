@@ -4,9 +4,7 @@
 #include <stdio.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -14,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/files.h"
 #include "core/host_inputs.h"
 #include "core/image_codecs.h"
 #include "core/one_line.h"
@@ -23,8 +22,7 @@ namespace rm {
 namespace {
 
 bool is_float_format(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowercase_extension(path);
   return ext == ".exr" || ext == ".hdr";
 }
 
@@ -120,9 +118,8 @@ std::optional<std::string> check_output_directory(const fs::path& path) {
   if (!fs::exists(dir, ec)) return "'" + path.string() + "': directory '" + dir.string() + "' does not exist";
   if (!fs::is_directory(dir, ec)) return "'" + path.string() + "': '" + dir.string() + "' is not a directory";
   if (access(dir.c_str(), W_OK) != 0) {
-    std::string why = std::strerror(errno);  // "Permission denied", "Read-only file system"
-    if (!why.empty()) why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
-    return "'" + path.string() + "': directory '" + dir.string() + "' is not writable: " + why;
+    // "permission denied", "read-only file system"
+    return "'" + path.string() + "': directory '" + dir.string() + "' is not writable: " + after_colon(std::strerror(errno));
   }
   return std::nullopt;
 }
@@ -156,6 +153,8 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
 
 std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view bytes, Overwrite overwrite,
                                          std::string* error) {
+  if (overwrite == Overwrite::Replace)
+    return write_whole_files({{path, bytes}}, error) ? std::optional(path) : std::nullopt;
   const fs::path temp = temporary_sibling(path);
   if (int err = write_durably(temp, bytes); err != 0) {
     *error = "cannot write '" + path.string() + "': " + std::strerror(err);
@@ -163,30 +162,22 @@ std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view 
     fs::remove(temp, ec);
     return std::nullopt;
   }
-
-  if (overwrite == Overwrite::Replace) {
-    std::error_code ec;
-    fs::rename(temp, path, ec);
-    if (!ec) return path;
-    *error = "cannot write '" + path.string() + "': " + ec.message();
-  } else {
-    for (int n = 0; n < 1000; ++n) {
-      const fs::path target = n == 0 ? path : numbered(path, n);
-      int err = 0;
-      if (rename_no_replace(temp, target, &err)) return target;
-      if (err != EEXIST) {
-        *error = "cannot write '" + target.string() + "': " + std::strerror(err);
-        break;
-      }
+  for (int n = 0; n < 1000; ++n) {
+    const fs::path target = n == 0 ? path : numbered(path, n);
+    int err = 0;
+    if (rename_no_replace(temp, target, &err)) return target;
+    if (err != EEXIST) {
+      *error = "cannot write '" + target.string() + "': " + std::strerror(err);
+      break;
     }
-    if (error->empty()) *error = "cannot write '" + path.string() + "': too many files of that name";
   }
+  if (error->empty()) *error = "cannot write '" + path.string() + "': too many files of that name";
   std::error_code ec;
   fs::remove(temp, ec);
   return std::nullopt;
 }
 
-bool write_whole_files(const std::vector<std::pair<fs::path, std::string>>& files, std::string* error) {
+bool write_whole_files(const std::vector<std::pair<fs::path, std::string_view>>& files, std::string* error) {
   std::vector<fs::path> temps;
   auto fail = [&](const fs::path& path, const std::string& why) {
     *error = "cannot write '" + path.string() + "': " + why;

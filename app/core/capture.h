@@ -58,7 +58,7 @@ std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view 
 // Writes every file of `files` (path, bytes), replacing what is there, or
 // none: each goes under a hidden name first, and only once all are written
 // (a full disk fails one) are they renamed into place. False with *error.
-bool write_whole_files(const std::vector<std::pair<fs::path, std::string>>& files, std::string* error);
+bool write_whole_files(const std::vector<std::pair<fs::path, std::string_view>>& files, std::string* error);
 
 // What a picture needs to be reproduced: scene, -I and -D (the accuracy knobs
 // and the preset among them), inputs, supersamples and motion blur, and the

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 
@@ -57,6 +58,11 @@ std::string over(std::uintmax_t bytes, std::uintmax_t limit, const char* what) {
 }  // namespace
 
 std::string over_the_limit(std::uintmax_t bytes) { return over(bytes, kMaxShaderBytes, "shader files"); }
+
+std::string after_colon(std::string words) {
+  if (!words.empty()) words[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(words[0])));
+  return words;
+}
 
 bool is_under(const std::filesystem::path& file, const std::filesystem::path& dir) {
   if (dir.empty()) return false;

@@ -2,6 +2,7 @@
 // size limit. A FIFO, a device, a socket or a directory would block a read or
 // never end it, so each is refused by what it is, before anything is read.
 #pragma once
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -39,5 +40,17 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& path, 
 
 // "is 17000000 bytes, over the 16 MiB limit for shader files"
 std::string over_the_limit(std::uintmax_t bytes);
+
+// The system's words for an error ("Read-only file system"), to follow a
+// colon in a one-line message: the first letter in lower case.
+std::string after_colon(std::string words);
+
+// `path`'s extension in lower case (".png" for "x.PNG"), as formats are
+// chosen. Inline: the image module, which links no core, uses it too.
+inline std::string lowercase_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
 
 }  // namespace rm

@@ -238,8 +238,8 @@ bool write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows
       svg_chart(req.scene.filename().string() + ": image error against GPU time (" + std::to_string(req.size.x) + "x" +
                     std::to_string(req.size.y) + ")",
                 "frame time, draw + glFinish (ms)", "PSNR against the reference (dB)", series);
-  return write_whole_file(req.out / "accuracy.csv", csv.str(), Overwrite::Replace, error) &&
-         write_whole_file(req.out / "accuracy.svg", svg, Overwrite::Replace, error);
+  const std::string table = csv.str();
+  return write_whole_files({{req.out / "accuracy.csv", table}, {req.out / "accuracy.svg", svg}}, error);
 }
 
 }  // namespace

@@ -6,13 +6,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <vector>
 
 #include "core/capture.h"
+#include "core/files.h"
 
 extern char** environ;
 
@@ -45,8 +45,7 @@ const std::vector<Container>& containers() {
 }
 
 const Container* container_of(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowercase_extension(path);
   for (const Container& c : containers())
     if (ext == c.extension) return &c;
   return nullptr;

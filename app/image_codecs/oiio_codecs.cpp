@@ -5,12 +5,11 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
-#include <cctype>
 #include <map>
 #include <mutex>
 #include <string>
 
+#include "core/files.h"
 #include "core/image_codecs.h"
 
 namespace rm {
@@ -60,9 +59,7 @@ class OiioCodecs final : public ImageCodecs {
     static std::mutex mutex;
     static std::map<std::string, bool> known;
     const std::lock_guard<std::mutex> lock(mutex);
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    auto [it, fresh] = known.try_emplace(ext, false);
+    auto [it, fresh] = known.try_emplace(lowercase_extension(path), false);
     if (fresh) it->second = probe_reads_back(path);
     return it->second;
   }
