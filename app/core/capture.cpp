@@ -126,6 +126,12 @@ std::optional<std::string> check_output_directory(const fs::path& path) {
 
 std::optional<fs::path> write_image(const fs::path& path, const Image& image, const Metadata& metadata,
                                     Overwrite overwrite, std::string* error) {
+  const auto encoded = encode_image(path, image, metadata, error);
+  return encoded ? write_whole_file(path, *encoded, overwrite, error) : std::nullopt;
+}
+
+std::optional<std::string> encode_image(const fs::path& path, const Image& image, const Metadata& metadata,
+                                        std::string* error) {
   if (auto problem = check_output_path(path)) {
     *error = *problem;
     return std::nullopt;
@@ -147,8 +153,7 @@ std::optional<fs::path> write_image(const fs::path& path, const Image& image, co
     *error = "cannot encode '" + path.string() + "'" + (why.empty() ? "" : ": " + why);
     return std::nullopt;
   }
-  return write_whole_file(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()),
-                          overwrite, error);
+  return std::string(encoded.begin(), encoded.end());
 }
 
 std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view bytes, Overwrite overwrite,

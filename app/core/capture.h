@@ -50,6 +50,12 @@ std::string writable_image_extensions(bool (*written_otherwise)(const fs::path&)
 std::optional<fs::path> write_image(const fs::path& path, const Image& image, const Metadata& metadata,
                                     Overwrite overwrite, std::string* error);
 
+// The bytes of the file write_image would write (its format chosen by
+// `path`'s extension), or nullopt with *error set: for pictures that are
+// written together with other files (write_whole_files).
+std::optional<std::string> encode_image(const fs::path& path, const Image& image, const Metadata& metadata,
+                                        std::string* error);
+
 // Writes `bytes` to `path` the way write_image writes a picture: whole or
 // not at all, under a hidden name first (same return and error).
 std::optional<fs::path> write_whole_file(const fs::path& path, std::string_view bytes, Overwrite overwrite,

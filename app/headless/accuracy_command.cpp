@@ -204,9 +204,14 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
-// The table and the chart, each whole or not at all; false with *error set
-// when one could not be written.
-bool write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows, std::string* error) {
+// The pictures (path, encoded bytes) drawn on the way.
+using Pictures = std::vector<std::pair<fs::path, std::string>>;
+
+// The table, the chart and the pictures, all or none (an older report is
+// not left with some of a new one's files); false with *error set when one
+// could not be written.
+bool write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows, const Pictures& pictures,
+                   std::string* error) {
   std::ostringstream csv;
   csv << "knob,value,ms,wall_ms,evaluations_mean,evaluations_max,rmse,psnr_db,hit_miss_share,depth_error,nan_pixels,no_effect,"
          "bound_evaluations_mean\n";
@@ -239,7 +244,10 @@ bool write_outputs(const AccuracyRequest& req, const std::vector<Measured>& rows
                     std::to_string(req.size.y) + ")",
                 "frame time, draw + glFinish (ms)", "PSNR against the reference (dB)", series);
   const std::string table = csv.str();
-  return write_whole_files({{req.out / "accuracy.csv", table}, {req.out / "accuracy.svg", svg}}, error);
+  std::vector<std::pair<fs::path, std::string_view>> files{{req.out / "accuracy.csv", table},
+                                                           {req.out / "accuracy.svg", svg}};
+  for (const auto& [path, bytes] : pictures) files.emplace_back(path, bytes);
+  return write_whole_files(files, error);
 }
 
 }  // namespace
@@ -292,10 +300,14 @@ int accuracy_command(const AccuracyRequest& input) {
     std::cerr << error;
     return failed;
   }
-  if (!write_image(req.out / "reference.png", reference->color, {}, Overwrite::Replace, &error)) {
-    std::cerr << "raymarching: error: " << error << '\n';
-    return kExitUsage;
-  }
+  Pictures pictures;
+  auto keep_picture = [&](const fs::path& path, const Image& image) {
+    auto bytes = encode_image(path, image, {}, &error);
+    if (bytes) pictures.emplace_back(path, std::move(*bytes));
+    else std::cerr << "raymarching: error: " << error << '\n';
+    return bytes.has_value();
+  };
+  if (!keep_picture(req.out / "reference.png", reference->color)) return kExitUsage;
 
   const std::vector<Setting> settings = sweep();
   const std::string default_text = bench.expanded(settings.front());
@@ -338,11 +350,7 @@ int accuracy_command(const AccuracyRequest& input) {
       in.resolution = glm::vec3(req.size, 1.0f);
       in.time = static_cast<float>(req.time);
       in.uniforms = uniform_values(project.user_uniforms(), {}, &ignored).value_or(std::vector<UniformValue>{});
-      if (!write_image(req.out / "steps.png", graph.render_frame(project, in, req.size), {}, Overwrite::Replace,
-                       &error)) {
-        std::cerr << "raymarching: error: " << error << '\n';
-        return kExitUsage;
-      }
+      if (!keep_picture(req.out / "steps.png", graph.render_frame(project, in, req.size))) return kExitUsage;
     }
   }
 
@@ -361,7 +369,7 @@ int accuracy_command(const AccuracyRequest& input) {
                 m.no_effect ? " (no effect)" : "", m.ms, m.wall_ms, m.evals_mean, m.evals_max, bound_column.c_str(), m.psnr,
                 100.0 * m.hit_miss, m.depth_error, m.nan);
   }
-  if (!write_outputs(req, rows, &error)) {
+  if (!write_outputs(req, rows, pictures, &error)) {
     std::cerr << "raymarching: error: " << error << '\n';
     return kExitUsage;
   }

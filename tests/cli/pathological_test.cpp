@@ -589,6 +589,40 @@ TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
   EXPECT_FALSE(std::filesystem::exists(disk / "made")) << "a half-imported project";
 }
 
+// An accuracy report is four files: on a full disk it is written whole or
+// not at all, and an older report in the folder keeps all of its files (a
+// new reference.png beside an old table would mislead).
+TEST_F(Pathological, AnAccuracyReportOnAFullDiskKeepsTheOlderOne) {
+  if (!own_mount_namespace()) GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
+  write_file(dir_ / "ball.frag", "#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
+                                 "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
+                                 "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
+                                 "void mainImage(out vec4 c, in vec2 f) {\n"
+                                 "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
+                                 "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
+  const std::filesystem::path disk = dir_ / "disk";
+  std::filesystem::create_directory(disk);
+  ASSERT_EQ(mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=64k"), 0) << std::strerror(errno);
+  struct Unmount {
+    std::filesystem::path at;
+    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
+  } unmount{disk};
+  const std::vector<std::string> report = {"accuracy.csv", "accuracy.svg", "reference.png", "steps.png"};
+  for (const std::string& name : report) write_file(disk / name, "older " + name);
+  write_file(disk / "filler", std::string(10 * 4096, 'x'));  // two pages left of sixteen
+  const test::Outcome r =
+      test::run_binary("accuracy " + path("ball.frag") + " --size 32x18 --out " + disk.string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+  EXPECT_NE(last.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_EQ(last.find(".tmp"), std::string::npos) << r.err;
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(disk)) left.push_back(entry.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"accuracy.csv", "accuracy.svg", "filler", "reference.png", "steps.png"}));
+  for (const std::string& name : report) EXPECT_TRUE(test::read_file(disk / name) == "older " + name) << name << " replaced";
+}
+
 // A read-only file system, for real (root may write anywhere else, so the
 // tests stood a file in for it): each output is refused before anything is
 // drawn, in one line that says why.
