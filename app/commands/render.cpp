@@ -25,8 +25,8 @@ RenderCommand::RenderCommand(CLI::App& app)
   c.add_option("--take", take_, "Render a take recorded in the window (F9): its scene, -I/-D and every frame's "
                                 "inputs, as recorded or resampled at --fps")->type_name("TAKE");
   c.add_option("--media", media_, "Where a .json's shadertoy.com media are, by file name")->type_name("DIR");
-  c.add_option("-o,--output", out_, "Output image: .png (8-bit, clamped) or .exr (raw float); or a video through "
-                                    "ffmpeg: .mp4 or .mov (H.264), .webm (VP9), .gif")->required()->type_name("OUT");
+  c.add_option("-o,--output", out_, "Output picture: .png (8-bit, clamped), .exr (raw float), .jpg, .tif, ... "
+                                    "(OpenImageIO's); or a video through ffmpeg: .mp4 or .mov (H.264), .webm (VP9), .gif")->required()->type_name("OUT");
   source_.add_to(c);
   c.add_option("--size", size_, "Picture size in pixels")->type_name("WxH");
   c.add_option("--time", time_, "iTime of the (first) frame in seconds")->type_name("T");
