@@ -533,6 +533,41 @@ bool own_mount_namespace() {
   return own;
 }
 
+// A disk of 64 KiB (16 pages), for real: a tmpfs made at `at` in a mount
+// namespace of this test process's own, unmounted when it goes. False where
+// the process cannot have a namespace of its own (the test skips: `why()`);
+// a mount that fails in a namespace of its own is a test failure.
+class SmallDisk {
+ public:
+  explicit SmallDisk(const std::filesystem::path& at, unsigned long flags = 0) : at_(at) {
+    std::filesystem::create_directory(at_);
+    if (!own_mount_namespace()) {
+      why_ = std::string("no mount namespace of its own (needs root): ") + std::strerror(errno);
+      return;
+    }
+    mounted_ = mount("tmpfs", at_.c_str(), "tmpfs", flags, "size=64k") == 0;
+    if (!mounted_) ADD_FAILURE() << "cannot mount a tmpfs at " << at_ << ": " << std::strerror(errno);
+  }
+  ~SmallDisk() {
+    if (mounted_) umount2(at_.c_str(), MNT_DETACH);
+  }
+  explicit operator bool() const { return mounted_; }
+  const std::string& why() const { return why_; }
+
+ private:
+  std::filesystem::path at_;
+  bool mounted_ = false;
+  std::string why_;
+};
+
+// The names in `dir`, sorted.
+std::vector<std::string> names_in(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 // A full disk, for real: a 64 KiB tmpfs, mounted in a mount namespace of
 // this test process's own (nothing outside sees it). ffmpeg 5 exits 0 when
 // its last write fails ("Error writing trailer of ...: No space left on
@@ -542,18 +577,13 @@ bool own_mount_namespace() {
 // a file, and a file already there keeps its bytes. An import wrote the
 // files of a project that fitted and left the rest out.
 TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
-  if (!own_mount_namespace()) GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
   write_file(dir_ / "white.frag", kMain);
   write_file(dir_ / "noise.frag",  // a picture that does not compress
              "void mainImage(out vec4 c, in vec2 f) { c = vec4(fract(sin(dot(f, vec2(12.9898, 78.233)) + "
              "iTime) * 43758.5453)); }\n");
   const std::filesystem::path disk = dir_ / "disk";
-  std::filesystem::create_directory(disk);
-  ASSERT_EQ(mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=64k"), 0) << std::strerror(errno);
-  struct Unmount {
-    std::filesystem::path at;
-    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
-  } unmount{disk};
+  const SmallDisk mounted(disk);
+  if (!mounted) GTEST_SKIP() << mounted.why();
   write_file(disk / "kept.png", "the bytes of an older picture");
   const std::vector<std::pair<std::string, std::string>> outputs = {
       {"out.mp4", "--size 640x360 --frames 40"},
@@ -572,10 +602,7 @@ TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
     const std::string named = (disk / (out.find('%') != std::string::npos ? "frame000.png" : out)).string();
     EXPECT_NE(r.err.find(named + "':"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find(".tmp"), std::string::npos) << r.err;  // not the temporary's name
-    std::vector<std::string> left;
-    for (const auto& entry : std::filesystem::directory_iterator(disk)) left.push_back(entry.path().filename().string());
-    std::sort(left.begin(), left.end());
-    EXPECT_EQ(left, std::vector<std::string>{"kept.png"});
+    EXPECT_EQ(names_in(disk), std::vector<std::string>{"kept.png"});
     EXPECT_EQ(test::read_file(disk / "kept.png"), "the bytes of an older picture");
   }
   // A project's files, with one page of the disk left: all of them or none,
@@ -593,7 +620,6 @@ TEST_F(Pathological, AFullDiskLeavesNothingAndSaysSo) {
 // not at all, and an older report in the folder keeps all of its files (a
 // new reference.png beside an old table would mislead).
 TEST_F(Pathological, AnAccuracyReportOnAFullDiskKeepsTheOlderOne) {
-  if (!own_mount_namespace()) GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
   write_file(dir_ / "ball.frag", "#include <rm/sdf.glsl>\n#include <rm/render.glsl>\n"
                                  "float map(vec3 p) { return min(sdSphere(p, 1.0), p.y + 1.0); }\n"
                                  "RmMaterial material(vec3 p, vec3 n) { return rmMaterial(vec3(0.8)); }\n"
@@ -601,12 +627,8 @@ TEST_F(Pathological, AnAccuracyReportOnAFullDiskKeepsTheOlderOne) {
                                  "  RmCamera cam = rmLookAt(vec3(0.0, 1.0, 5.0), vec3(0.0), 0.8);\n"
                                  "  c = vec4(rmRenderPixel(cam, f, iResolution), 1.0);\n}\n");
   const std::filesystem::path disk = dir_ / "disk";
-  std::filesystem::create_directory(disk);
-  ASSERT_EQ(mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=64k"), 0) << std::strerror(errno);
-  struct Unmount {
-    std::filesystem::path at;
-    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
-  } unmount{disk};
+  const SmallDisk mounted(disk);
+  if (!mounted) GTEST_SKIP() << mounted.why();
   const std::vector<std::string> report = {"accuracy.csv", "accuracy.svg", "reference.png", "steps.png"};
   for (const std::string& name : report) write_file(disk / name, "older " + name);
   write_file(disk / "filler", std::string(10 * 4096, 'x'));  // two pages left of sixteen
@@ -616,10 +638,7 @@ TEST_F(Pathological, AnAccuracyReportOnAFullDiskKeepsTheOlderOne) {
   const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
   EXPECT_NE(last.find("No space left on device"), std::string::npos) << r.err;
   EXPECT_EQ(last.find(".tmp"), std::string::npos) << r.err;
-  std::vector<std::string> left;
-  for (const auto& entry : std::filesystem::directory_iterator(disk)) left.push_back(entry.path().filename().string());
-  std::sort(left.begin(), left.end());
-  EXPECT_EQ(left, (std::vector<std::string>{"accuracy.csv", "accuracy.svg", "filler", "reference.png", "steps.png"}));
+  EXPECT_EQ(names_in(disk), (std::vector<std::string>{"accuracy.csv", "accuracy.svg", "filler", "reference.png", "steps.png"}));
   for (const std::string& name : report) EXPECT_TRUE(test::read_file(disk / name) == "older " + name) << name << " replaced";
 }
 
@@ -627,15 +646,10 @@ TEST_F(Pathological, AnAccuracyReportOnAFullDiskKeepsTheOlderOne) {
 // tests stood a file in for it): each output is refused before anything is
 // drawn, in one line that says why.
 TEST_F(Pathological, AReadOnlyDiskIsRefusedWithItsReason) {
-  if (!own_mount_namespace()) GTEST_SKIP() << "no mount namespace of its own (needs root): " << std::strerror(errno);
   write_file(dir_ / "white.frag", kMain);
   const std::filesystem::path disk = dir_ / "read-only";
-  std::filesystem::create_directory(disk);
-  ASSERT_EQ(mount("tmpfs", disk.c_str(), "tmpfs", MS_RDONLY, "size=64k"), 0) << std::strerror(errno);
-  struct Unmount {
-    std::filesystem::path at;
-    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
-  } unmount{disk};
+  const SmallDisk mounted(disk, MS_RDONLY);
+  if (!mounted) GTEST_SKIP() << mounted.why();
   const std::string render = "render " + path("white.frag") + " -o " + disk.string();
   const std::vector<std::pair<std::string, std::string>> commands = {
       {render + "/a.png --size 16x9", "is not writable: read-only file system"},
