@@ -1,6 +1,7 @@
 #include "core/files.h"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -58,6 +59,13 @@ std::string over(std::uintmax_t bytes, std::uintmax_t limit, const char* what) {
 }  // namespace
 
 std::string over_the_limit(std::uintmax_t bytes) { return over(bytes, kMaxShaderBytes, "shader files"); }
+
+std::string within_open_file_limit() {
+  rlimit files{};
+  constexpr rlim_t kFewFiles = 64;  // a driver opens a dozen or so, X11 and GLX as many
+  if (getrlimit(RLIMIT_NOFILE, &files) != 0 || files.rlim_cur > kFewFiles) return "";
+  return " within this process's limit of open files (ulimit -n " + std::to_string(files.rlim_cur) + ")";
+}
 
 std::string after_colon(std::string words) {
   if (!words.empty()) words[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(words[0])));

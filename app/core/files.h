@@ -41,6 +41,11 @@ std::optional<std::string> read_regular_file(const std::filesystem::path& path, 
 // "is 17000000 bytes, over the 16 MiB limit for shader files"
 std::string over_the_limit(std::uintmax_t bytes);
 
+// " within this process's limit of open files (ulimit -n N)" where that
+// limit is small enough (64 or less) to be the likely cause of a library's
+// failure that does not name it (Mesa's "Failed to load GLX"), else "".
+std::string within_open_file_limit();
+
 // The system's words for an error ("Read-only file system"), to follow a
 // colon in a one-line message: the first letter in lower case.
 std::string after_colon(std::string words);

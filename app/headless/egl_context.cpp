@@ -4,13 +4,13 @@
 #include <epoxy/gl.h>
 
 #include <dlfcn.h>
-#include <sys/resource.h>
 
 #include <string>
 #include <vector>
 
 #include "core/address_space.h"
 #include "core/driver_ready.h"
+#include "core/files.h"
 #include "core/gl_debug.h"
 
 namespace rm {
@@ -104,11 +104,8 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
     return nullptr;
   }
   // Nor does Mesa say that it found no file descriptor to open its driver with.
-  rlimit files{};
-  constexpr rlim_t kFewFiles = 64;  // a driver opens a dozen or so
-  if (getrlimit(RLIMIT_NOFILE, &files) == 0 && files.rlim_cur <= kFewFiles) {
-    *error = "no EGL display offers an OpenGL 4.5 core context within this process's limit of open files (ulimit -n " +
-             std::to_string(files.rlim_cur) + ")";
+  if (const std::string limit = within_open_file_limit(); !limit.empty()) {
+    *error = "no EGL display offers an OpenGL 4.5 core context" + limit;
     return nullptr;
   }
   *error = "no EGL display offers an OpenGL 4.5 core context (is Mesa's libegl-mesa0 installed?)";

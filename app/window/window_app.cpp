@@ -25,6 +25,7 @@
 #include "core/frame_budget.h"
 #include "core/frame_graph.h"
 #include "core/driver_ready.h"
+#include "core/files.h"
 #include "core/hw_performance.h"
 #include "core/project.h"
 #include "core/gl_census.h"
@@ -1469,8 +1470,11 @@ int run_window(const WindowOptions& options) {
   // not Xlib's exit(1).
   on_display_lost({});
   if (!glfwInit()) {
+    // X11 says "Failed to open display" where it had no file descriptor left.
+    const std::string limit = within_open_file_limit();
     std::cerr << "raymarching: error: cannot open a window ("
-              << (glfw_held_error.empty() ? "no display?" : glfw_held_error) << "); `raymarching render` needs none\n";
+              << (glfw_held_error.empty() ? "no display?" : glfw_held_error) << ")"
+              << (limit.empty() ? "; `raymarching render` needs none" : limit) << '\n';
     return kExitUsage;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
@@ -1484,7 +1488,8 @@ int run_window(const WindowOptions& options) {
   if (!window) {
     glfwTerminate();
     std::cerr << "raymarching: error: cannot create an OpenGL 4.5 core window"
-              << (glfw_held_error.empty() ? "" : " (" + glfw_held_error + ")") << within_address_space_limit() << '\n';
+              << (glfw_held_error.empty() ? "" : " (" + glfw_held_error + ")") << within_address_space_limit()
+              << within_open_file_limit() << '\n';
     return kExitUsage;
   }
   glfw_errors_held = false;

@@ -806,6 +806,46 @@ def every_address_space_limit_ends_in_the_picture_or_one_line():
     check("... and the largest of them is enough for the picture", outcomes.get(1100) == "picture", outcomes.get(1100))
 
 
+def every_file_limit_ends_in_the_window_or_one_line():
+    """Under every ulimit -n from 4 to 20, the window opens (with its picture,
+    or with why it could not read the scene) and quits on Q, or the process
+    ends with status 2 and one line that names the limit or says `Too many
+    open files`. X11 and GLX said `Failed to open display` and `Failed to load
+    GLX`, which sent the person looking for a display or a driver."""
+    scene = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../examples/default.frag")
+    work = harness.work_dir("rm-e2e-files-")
+    err_path = os.path.join(work, "stderr.txt")
+    outcomes = {}
+    for fds in range(4, 21):
+        with open(err_path, "w") as err:
+            proc = subprocess.Popen(["sh", "-c", f'ulimit -n {fds}; exec "$0" "$1" --size 64x36 -v', BINARY, scene],
+                                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=err)
+        shown = ("presented generation 1", "error: cannot read scene")
+        wait_for(lambda: proc.poll() is not None or any(m in open(err_path).read() for m in shown), timeout=40)
+        opened = proc.poll() is None
+        status = None
+        if opened:
+            window = wait_for(lambda: xdotool("search", "--pid", str(proc.pid)))
+            if window:
+                status = quit_with(proc, window.splitlines()[0], "q")
+        if status is None:
+            proc.kill()
+            status = proc.wait()
+        text = open(err_path).read()
+        ours = [line for line in text.splitlines() if line.startswith("raymarching: error: ")]
+        said = ours and ("Too many open files" in ours[0] or f"limit of open files (ulimit -n {fds})" in ours[0])
+        if opened and status == 0:
+            outcomes[fds] = "window"
+        elif not opened and status == 2 and len(text.splitlines()) == 1 and said:
+            outcomes[fds] = "one line"
+        else:
+            outcomes[fds] = f"status {status}: {text[-400:]!r}"
+    print("     " + ", ".join(f"{fds}: {o}" for fds, o in outcomes.items()))
+    bad = {fds: o for fds, o in outcomes.items() if o not in ("window", "one line")}
+    check("under every ulimit -n from 4 to 20 the window opens and quits, or one line names the limit", not bad, bad)
+    check("... and 20 files are enough for the picture", outcomes.get(20) == "window", outcomes.get(20))
+
+
 def tweak_at_rest():
     """A number edit of a still: the twin's picture is refined to its
     samples, and the exact program that follows neither draws nor refines
@@ -978,6 +1018,8 @@ if __name__ == "__main__":
         mesa_cache_off_is_said()
         if "--sanitized" not in sys.argv[2:]:  # ASan's runtime cannot start under a ulimit -v
             every_address_space_limit_ends_in_the_picture_or_one_line()
+            # nor keep to a few files: it opens its own (/proc/self/maps), which moves where each step runs out
+            every_file_limit_ends_in_the_window_or_one_line()
     finally:
         status = summary()
     sys.exit(status)
