@@ -337,11 +337,17 @@ int accuracy_command(const AccuracyRequest& input) {
     compare(*got, *reference, &m);
     rows.push_back(m);
   }
-  // The default's steps as a heatmap picture.
+  // The default's steps as a heatmap picture. A scene whose steps view does
+  // not build (its own #if RM_VIEW == 1) still gets its table and chart.
   {
     SourceOptions steps = with_view(req.source, View::Steps);
     Project project(req.scene, steps);
-    if (project.reload() == ReloadStatus::Swapped) {
+    if (project.reload() != ReloadStatus::Swapped) {
+      std::cerr << "accuracy: the steps view does not build, so no steps.png is written:\n"
+                << join(project.diagnostics());
+      if (fs::exists(req.out / "steps.png"))
+        std::cerr << "accuracy: the steps.png in " << req.out.string() << " is an earlier run's\n";
+    } else {
       Renderer renderer;
       FrameGraph graph(renderer);
       std::string ignored;
@@ -373,7 +379,9 @@ int accuracy_command(const AccuracyRequest& input) {
     std::cerr << "raymarching: error: " << error << '\n';
     return kExitUsage;
   }
-  std::cerr << "accuracy: wrote " << (req.out / "accuracy.csv").string() << ", accuracy.svg, reference.png, steps.png\n";
+  std::cerr << "accuracy: wrote " << (req.out / "accuracy.csv").string() << ", accuracy.svg";
+  for (const auto& picture : pictures) std::cerr << ", " << picture.first.filename().string();
+  std::cerr << '\n';
   return kExitOk;
 }
 

@@ -550,6 +550,25 @@ TEST_F(Cli, AccuracyWritesATableACsvAChartAndPictures) {
   EXPECT_EQ(test::read_file(out / "accuracy.svg").rfind("<svg", 0), 0u);
   EXPECT_EQ(test::read_pixels(out / "reference.png").size(), 32u * 18u * 4u);
   EXPECT_EQ(test::read_pixels(out / "steps.png").size(), 32u * 18u * 4u);
+  EXPECT_NE(r.err.find("accuracy.svg, reference.png, steps.png\n"), std::string::npos) << r.err;
+}
+
+// A scene whose steps view does not build still gets its report, and the
+// run says so: an older report's steps.png is not passed off as this one's.
+TEST_F(Cli, AccuracyWithoutAStepsViewSaysSo) {
+  const std::string scene = ball_on_floor("nosteps.frag", "#if RM_VIEW == 1\n#error no steps view here\n#endif");
+  const auto out = dir_ / "report";
+  std::filesystem::create_directories(out);
+  write_file(out / "steps.png", "an earlier run's");
+  const test::Outcome r = run("accuracy " + scene + " --size 32x18 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("the steps view does not build, so no steps.png is written:\n" + scene + ":2:"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no steps view here"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the steps.png in " + out.string() + " is an earlier run's"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("accuracy.svg, reference.png\n"), std::string::npos) << r.err;
+  EXPECT_EQ(test::read_file(out / "steps.png"), "an earlier run's");
+  EXPECT_EQ(test::read_pixels(out / "reference.png").size(), 32u * 18u * 4u);
 }
 
 // The reference is the scene at the reference preset's knobs, whatever the
