@@ -1,7 +1,9 @@
 // buffer_a.frag of the progressive project: each frame traces one more
 // jittered sample per pixel, through a thin lens (depth of field), and adds
 // it to what this buffer held: rgb is the sum, alpha the number of samples.
-// A drag with the mouse, or a new size, starts the sum again.
+// A drag with the mouse, or a new size, starts the sum again. A resize keeps
+// a buffer's texels where they fit (as Shadertoy does), so texel (0, 0)
+// holds the size the sums were traced at instead of a sum.
 #pragma channel0 self filter=nearest
 #define RM_SHADOWS 3
 #define RM_AO
@@ -47,6 +49,11 @@ vec2 random2(uvec3 v) {
 }
 
 void mainImage(out vec4 sum, in vec2 fragCoord) {
+  bool resized = texelFetch(iChannel0, ivec2(0), 0).xy != iResolution.xy;
+  if (ivec2(fragCoord) == ivec2(0)) {
+    sum = vec4(iResolution.xy, 0.0, 0.0);
+    return;
+  }
   RmCamera cam = rmLookAt(vec3(0.0, 1.6, 5.0), vec3(0.0, 0.5, 0.0), 0.8);
   vec2 u = random2(uvec3(fragCoord, iFrame)), lens = random2(uvec3(fragCoord, iFrame + 7919));
   vec3 rd = rmCameraRay(cam, fragCoord + u - 0.5, iResolution);
@@ -57,6 +64,6 @@ void mainImage(out vec4 sum, in vec2 fragCoord) {
   float r = kAperture * sqrt(lens.x), a = 6.2831853 * lens.y;
   vec3 ro = cam.position + cam.basis * vec3(r * cos(a), r * sin(a), 0.0);
   vec3 color = rmRender(ro, normalize(focus - ro), rmPixelCone(cam, iResolution));
-  bool restart = iFrame == 0 || iMouse.z > 0.0;
+  bool restart = iFrame == 0 || iMouse.z > 0.0 || resized;
   sum = (restart ? vec4(0.0) : texelFetch(iChannel0, ivec2(fragCoord), 0)) + vec4(color, 1.0);
 }

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/capture.h"
+#include "core/data_paths.h"
 #include "core/frame_graph.h"
 #include "core/project.h"
 #include "window/panels.h"
@@ -135,6 +136,32 @@ TEST_F(Passes, AResizeKeepsTheContentWhereItFitsAndRestartClears) {
   EXPECT_EQ(at(bigger, 6, 6)[0], 1.0f) << "new texels start at zero";
   graph_.restart();
   EXPECT_EQ(at(frame(0, {8, 8}), 1, 6)[0], 1.0f);
+}
+
+// The progressive example keeps its buffer's size in texel (0, 0), so that
+// a resize, which keeps the old sums where they fit, starts the sum again:
+// its next picture is the one a fresh graph draws at that size and frame,
+// not a mix of sums traced for another picture.
+TEST_F(Passes, TheProgressiveExampleStartsAgainAfterAResize) {
+  const fs::path image = fs::path(RM_SOURCE_DIR) / "examples" / "progressive" / "image.frag";
+  SourceOptions options;
+  options.shaderlib_dir = shaderlib_dir();
+  project_ = std::make_unique<Project>(image, options);
+  ASSERT_EQ(project_->reload(), ReloadStatus::Swapped) << join(project_->diagnostics());
+  std::string error;
+  ASSERT_TRUE(graph_.update(*project_, &error)) << error;
+  for (int n = 0; n < 6; ++n) frame(n, {24, 16});
+  const Image resized = frame(6, {32, 18});
+
+  FrameGraph fresh(renderer_);
+  ASSERT_TRUE(fresh.update(*project_, &error)) << error;
+  FrameInputs in;
+  in.resolution = glm::vec3(32, 18, 1);
+  in.frame = 6;
+  const Image expected = fresh.render_frame(*project_, in, {32, 18});
+  ASSERT_EQ(resized.rgba.size(), expected.rgba.size());
+  EXPECT_EQ(resized.rgba, expected.rgba);
+  EXPECT_NE(at(frame(7, {32, 18}), 5, 5), at(expected, 5, 5)) << "the next frame adds a sample";
 }
 
 TEST_F(Passes, ASaveToOneBufferRebuildsOnlyItAndABrokenPassKeepsTheWholeGraph) {
