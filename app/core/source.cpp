@@ -406,6 +406,10 @@ class Preprocessor {
     // GLSL counts form feed and vertical tab as blanks, but glslang rejects
     // them: they become spaces, so lines and columns stay where they were.
     std::replace_if(text.begin(), text.end(), [](char c) { return c == '\f' || c == '\v'; }, ' ');
+    // GLSL ends a line at a carriage return alone too (old Mac files), but
+    // glslang reads such a file as one line: each becomes a newline.
+    for (size_t at = text.find('\r'); at != std::string::npos; at = text.find('\r', at + 1))
+      if (at + 1 == text.size() || text[at + 1] != '\n') text[at] = '\n';
     if (text.find('\0') != std::string::npos) {
       int file = add_file(path);
       error(file, 0, 0, "not a text file (it contains NUL bytes)");

@@ -31,6 +31,20 @@ TEST(Check, ErrorInAnIncludedFileNamesThatFileAndLine) {
   EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() + ":4:10: error: 'undefined_name' : undeclared identifier");
 }
 
+// GLSL ends a line at CR, LF or CR LF. glslang reads a file of CRs alone
+// (an old Mac editor's) as one line, a comment here: the lines are the file's.
+TEST(Check, EachLineEndingEndsALineAndErrorsKeepTheirLines) {
+  TempDir dir;
+  write_file(dir / "lib.glsl", "// lib\r\rfloat g() {\r  return bad_name;\r}\r");
+  write_file(dir / "scene.frag", "// scene\r#include \"lib.glsl\"\r\nvoid mainImage(out vec4 c, in vec2 f) {\n"
+                                 "  c = vec4(\\\r g());\r  float y = nope;\r}\r");
+  Diagnostics diags;
+  check_scene(dir / "scene.frag", {}, &diags);
+  ASSERT_EQ(count_errors(diags), 2) << join(diags);
+  EXPECT_EQ(diags[0].str(), (dir / "lib.glsl").string() + ":4:10: error: 'bad_name' : undeclared identifier");
+  EXPECT_EQ(diags[1].str(), (dir / "scene.frag").string() + ":6:13: error: 'nope' : undeclared identifier");
+}
+
 // An error inside a conditional (an include guard) is the only error: no
 // "missing #endif", which glslang says when it stops at an error there.
 TEST(Check, ErrorInsideAnIncludeGuardIsTheOnlyError) {
