@@ -446,9 +446,24 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, std::string_v
   return MacroExpansion{static_cast<int>(cause->first) + 1, note + ")"};
 }
 
+// An include not found in an #if branch that the compiler took: the
+// preprocessor left an #error of kMissingIncludeMark in its place.
+std::optional<Diagnostic> missing_include(const Source& source, std::string_view message) {
+  const std::string mark = "'#error' : " + std::string(kMissingIncludeMark);
+  if (!message.starts_with(mark)) return std::nullopt;
+  size_t index = 0;
+  for (char c : message.substr(mark.size())) {
+    if (!lexing::is_digit(c) || index >= source.missing_includes.size()) return std::nullopt;
+    index = index * 10 + static_cast<size_t>(c - '0');
+  }
+  if (index >= source.missing_includes.size()) return std::nullopt;
+  return source.missing_includes[index];
+}
+
 // `code` is the final text without its comments, for an error in the host's lines.
 Diagnostic locate(const Source& source, std::string_view code, Severity severity, int final_line, int column,
                   std::string message) {
+  if (auto missing = missing_include(source, message)) return *missing;
   Diagnostic d;
   d.severity = severity;
   auto [path, line] = source.locate(final_line);

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/channel_spec.h"
 #include "core/check.h"
@@ -308,6 +309,26 @@ std::optional<IncludeDirective> parse_include(std::string_view line, bool* malfo
   return inc;
 }
 
+// The line of `code` (comments blanked) whose `#ifndef NAME` opens an include
+// guard: it is the first directive, and `#define NAME` the next. 0: none.
+int include_guard_line(std::string_view code) {
+  int guard_line = 0;
+  std::string_view guard;
+  for_each_line(code, [&](std::string_view line, int number) {
+    const auto d = lexing::directive(line);
+    if (!d) return true;
+    if (guard.empty()) {
+      const std::string_view name = d->rest.substr(0, d->rest.find_first_of(" \t\r\\"));
+      if (d->name != "ifndef" || !lexing::is_name(name)) return false;
+      guard = name, guard_line = number;
+      return true;
+    }
+    if (d->name != "define" || lexing::defined_macro(line) != guard) guard_line = 0;
+    return false;
+  });
+  return guard.empty() ? 0 : guard_line;
+}
+
 struct VersionInfo {
   int number = 0;
   std::string profile;  // "core", "es", "compatibility" or ""
@@ -356,12 +377,15 @@ class Preprocessor {
 
  private:
   void error(int file, int line, int column, std::string message) {
+    out_.errors.push_back(diagnostic(file, line, column, std::move(message)));
+  }
+  Diagnostic diagnostic(int file, int line, int column, std::string message) const {
     Diagnostic d;
     d.path = file >= 0 ? out_.files[static_cast<size_t>(file)].string() : std::string();
     d.line = line;
     d.column = column;
     d.message = std::move(message);
-    out_.errors.push_back(std::move(d));
+    return d;
   }
 
   std::optional<fs::path> resolve(const IncludeDirective& inc, const fs::path& including_dir,
@@ -377,16 +401,29 @@ class Preprocessor {
     return std::nullopt;
   }
 
+  // A file's text as the compiler reads it, and the same with its comments
+  // blanked, line for line and column for column (a directive inside a /* */
+  // comment is no directive). Read once, however often it is included.
+  struct FileText {
+    std::string text, code;
+    std::uintmax_t bytes = 0;  // on disk
+    // The line of the `#ifndef NAME` of an include guard (`#define NAME`
+    // next), which is taken at the file's first include: the includes inside
+    // it are not in an #if branch of the includer's. 0: no guard.
+    int guard_line = 0;
+  };
+
   // Reads one file and appends its lines, expanding includes in place.
   void include_file(const fs::path& path, int from_file, int from_line, int from_col) {
     Diagnostic why;
-    std::optional<std::string> bytes = fs_.read(path, &why);
-    if (bytes && total_bytes_ + bytes->size() > kMaxShaderBytes) {
+    const FileText* read = file_text(path, &why);
+    const std::uintmax_t bytes = read ? read->bytes : 0;
+    if (read && total_bytes_ + bytes > kMaxShaderBytes) {
       why = {};
-      why.message = "the scene with its includes would be " + over_the_limit(total_bytes_ + bytes->size()).substr(3);
-      bytes.reset();
+      why.message = "the scene with its includes would be " + over_the_limit(total_bytes_ + bytes).substr(3);
+      read = nullptr;
     }
-    if (!bytes) {
+    if (!read) {
       const int file = from_file < 0 ? add_file(path) : -1;
       if (!why.path.empty()) {
         out_.errors.push_back(std::move(why));  // where the cause is: the JSON's line
@@ -400,16 +437,8 @@ class Preprocessor {
       }
       return;
     }
-    total_bytes_ += bytes->size();
-    std::string text = std::move(*bytes);
-    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
-    // GLSL counts form feed and vertical tab as blanks, but glslang rejects
-    // them: they become spaces, so lines and columns stay where they were.
-    std::replace_if(text.begin(), text.end(), [](char c) { return c == '\f' || c == '\v'; }, ' ');
-    // GLSL ends a line at a carriage return alone too (old Mac files), but
-    // glslang reads such a file as one line: each becomes a newline.
-    for (size_t at = text.find('\r'); at != std::string::npos; at = text.find('\r', at + 1))
-      if (at + 1 == text.size() || text[at + 1] != '\n') text[at] = '\n';
+    total_bytes_ += bytes;
+    const std::string& text = read->text;
     if (text.find('\0') != std::string::npos) {
       int file = add_file(path);
       error(file, 0, 0, "not a text file (it contains NUL bytes)");
@@ -421,9 +450,32 @@ class Preprocessor {
     if (from_file < 0)
       for (const std::string& name : options_.forced_includes)
         if (!include(path, file, 0, IncludeDirective{false, name, 0})) break;
-    for_each_line(text, [&](std::string_view line, int line_no) { return take_line(path, file, line, line_no); });
+    for_each_line(text, [&](std::string_view line, int line_no) {
+      const std::string_view code_line(read->code.data() + (line.data() - text.data()), line.size());
+      return take_line(path, file, line, code_line, line_no, line_no == read->guard_line);
+    });
     in_dropped_define_ = false;  // a file's last line does not continue into the next file
     stack_.pop_back();
+  }
+
+  const FileText* file_text(const fs::path& path, Diagnostic* why) {
+    if (auto known = texts_.find(path.string()); known != texts_.end()) return &known->second;
+    std::optional<std::string> bytes = fs_.read(path, why);
+    if (!bytes) return nullptr;
+    FileText read{std::move(*bytes), {}, 0};
+    std::string& text = read.text;
+    read.bytes = text.size();
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+    // GLSL counts form feed and vertical tab as blanks, but glslang rejects
+    // them: they become spaces, so lines and columns stay where they were.
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == '\f' || c == '\v'; }, ' ');
+    // GLSL ends a line at a carriage return alone too (old Mac files), but
+    // glslang reads such a file as one line: each becomes a newline.
+    for (size_t at = text.find('\r'); at != std::string::npos; at = text.find('\r', at + 1))
+      if (at + 1 == text.size() || text[at + 1] != '\n') text[at] = '\n';
+    read.code = lexing::strip_comments(text);
+    read.guard_line = include_guard_line(read.code);
+    return &texts_.emplace(path.string(), std::move(read)).first->second;
   }
 
   bool defined_on_command_line(std::string_view name) const {
@@ -450,7 +502,9 @@ class Preprocessor {
 
   // One line of `file`: kept for the body, or a directive the host handles.
   // false stops reading the file (after an error).
-  bool take_line(const fs::path& path, int file, std::string_view line, int line_no) {
+  // `code` is `line` with its comments blanked; `guard` says it opens the file's include guard.
+  bool take_line(const fs::path& path, int file, std::string_view line, std::string_view code, int line_no,
+                 bool guard) {
     if (!out_.ok()) return false;
     // A #define the command line overrides is read as a blank line, with
     // the lines its backslashes continue it onto: lines keep their numbers.
@@ -459,6 +513,12 @@ class Preprocessor {
       add_body_line("", Origin{file, line_no});
       return true;
     }
+    const std::optional<lexing::Directive> directive = lexing::directive(code);
+    if (!directive) {  // code, or a line of a comment
+      add_body_line(line, Origin{file, line_no});
+      return true;
+    }
+    count_conditional(directive->name, guard);
     if (file == 0 && !version_ && (version_ = parse_version(line))) {
       version_origin_ = Origin{file, line_no};
       return true;  // re-emitted at the top by assemble()
@@ -510,10 +570,19 @@ class Preprocessor {
     }
     fs::path first_candidate;
     auto target = resolve(inc, path.parent_path(), &first_candidate);
+    const bool conditional = in_branch();
     if (!target) {
       if (!first_candidate.empty()) out_.watch.push_back(first_candidate);
-      error(file, line_no, inc.column, "cannot find include '" + quoted_path(inc.target) + "'");
-      return false;
+      const std::string missing = "cannot find include '" + quoted_path(inc.target) + "'";
+      if (!conditional) {
+        error(file, line_no, inc.column, missing);
+        return false;
+      }
+      // In an #if branch, which the compiler may not take: its error then.
+      add_body_line("#error " + std::string(kMissingIncludeMark) + std::to_string(out_.missing_includes.size()),
+                    Origin{file, line_no});
+      out_.missing_includes.push_back(diagnostic(file, line_no, inc.column, missing));
+      return true;
     }
     auto existing = file_index_.find(target->string());
     if (existing != file_index_.end()) {
@@ -525,14 +594,46 @@ class Preprocessor {
         error(file, line_no, inc.column, "#include cycle: " + chain + target->filename().string());
         return false;
       }
-      return true;  // already included once in this compile: nothing to add
+      if (included_for_certain_.count(existing->second)) return true;  // once in a compile: nothing to add
+    } else {
+      out_.watch.push_back(*target);
     }
-    out_.watch.push_back(*target);
+    auto included_for_certain = [&] {
+      if (auto known = file_index_.find(target->string()); known != file_index_.end())
+        included_for_certain_.insert(known->second);
+    };
+    if (!conditional && existing == file_index_.end()) {
+      include_file(*target, file, line_no, inc.column);
+      included_for_certain();
+      return true;
+    }
+    // Included in an #if branch, or after one: the compiler's first include
+    // of it that it takes holds the text, the rest are skipped.
+    const std::string guard = "RM_INCLUDED_" + std::to_string(add_file(*target));
+    add_body_line("#ifndef " + guard, Origin{file, line_no});
+    add_body_line("#define " + guard, Origin{file, line_no});
+    open_conditionals_.push_back(true);
     include_file(*target, file, line_no, inc.column);
+    if (!open_conditionals_.empty()) open_conditionals_.pop_back();  // as the #endif below does
+    add_body_line("#endif", Origin{file, line_no});
+    if (!conditional) included_for_certain();
     return true;
   }
 
+  // Follows the #if blocks open where a line is, across the files, as the
+  // compiler reads the text. An include guard's is open but no branch.
+  void count_conditional(std::string_view directive, bool guard) {
+    if (directive == "if" || directive == "ifdef" || directive == "ifndef") open_conditionals_.push_back(!guard);
+    else if (directive == "endif" && !open_conditionals_.empty()) open_conditionals_.pop_back();
+  }
+  // Whether the line being read is in an #if branch the compiler may not take.
+  bool in_branch() const {
+    return std::find(open_conditionals_.begin(), open_conditionals_.end(), true) != open_conditionals_.end();
+  }
+
+  // The index of `path` in out_.files, which lists each file once.
   int add_file(const fs::path& path) {
+    if (auto known = file_index_.find(path.string()); known != file_index_.end()) return known->second;
     out_.files.push_back(path);
     const int index = static_cast<int>(out_.files.size()) - 1;
     file_index_.emplace(path.string(), index);
@@ -784,6 +885,9 @@ class Preprocessor {
   Source out_;
   std::uintmax_t total_bytes_ = 0;  // of every file read, held to kMaxShaderBytes
   std::unordered_map<std::string, int> file_index_;  // path -> index in out_.files
+  std::unordered_set<int> included_for_certain_;     // files included outside any #if
+  std::unordered_map<std::string, FileText> texts_;  // path -> the file's text, read once
+  std::vector<bool> open_conditionals_;              // each #if block open: whether it is a branch
   std::vector<int> stack_;
   std::string body_;             // the user's lines, includes expanded, each ending in '\n'
   std::vector<Origin> body_map_;  // where each line of body_ came from

@@ -82,6 +82,8 @@ FileSystem disk_file_system();
 // The #version line the host gives a shader that names none, or an old one.
 inline constexpr char kHostVersionLine[] = "#version 450 core";
 
+inline constexpr char kMissingIncludeMark[] = "rm_missing_include_";
+
 struct Source {
   std::string text;                // the final GLSL handed to glslang and the driver
   std::vector<fs::path> files;     // every file read (index = Origin::file); [0] is the scene
@@ -103,6 +105,10 @@ struct Source {
   // Kind::None where nothing is named. A --channelN wins.
   std::array<ChannelSpec, 4> channels;
   Diagnostics errors;              // preprocessing errors; text is unusable if any
+  // Includes not found in an #if branch: the text holds `#error
+  // rm_missing_include_N` there (kMissingIncludeMark), for the Nth of these,
+  // which the compiler says only if it takes that branch.
+  Diagnostics missing_includes;
 
   bool ok() const { return errors.empty(); }
   // Maps a 1-based line of text to the user's file and line.

@@ -51,9 +51,7 @@
 #include <rm/march.glsl>
 #include <rm/normals.glsl>
 #include <rm/optics.glsl>
-// An endless grid. Every file it includes is included above: the host expands
-// each file once, whatever #if surrounds it, so none of them may first appear
-// inside this #ifdef.
+// An endless grid, for a scene that defines RM_GRID_PERIOD.
 #ifdef RM_GRID_PERIOD
 #include <rm/grid.glsl>
 #endif

@@ -45,6 +45,37 @@ TEST(Check, EachLineEndingEndsALineAndErrorsKeepTheirLines) {
   EXPECT_EQ(diags[1].str(), (dir / "scene.frag").string() + ":6:13: error: 'nope' : undeclared identifier");
 }
 
+// The compiler's #if decides, even over a line continued by a backslash.
+TEST(Check, AMissingIncludeIsAnErrorOnlyWhereItsBranchIsTaken) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#if defined(HAVE_NOISE) && \\\n    HAVE_NOISE > 1\n  #include \"noise.glsl\"\n#endif\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  auto diagnostics = [&](std::vector<Define> defines) {
+    SourceOptions options;
+    options.defines = std::move(defines);
+    Diagnostics diags;
+    check_scene(dir / "scene.frag", options, &diags);
+    return join(diags);
+  };
+  EXPECT_EQ(diagnostics({}), "");
+  EXPECT_EQ(diagnostics({{"HAVE_NOISE", "2"}}),
+            (dir / "scene.frag").string() + ":3:12: error: cannot find include 'noise.glsl'\n");
+  EXPECT_EQ(diagnostics({{"HAVE_NOISE", "1"}}), "");
+}
+
+// A file included first in a branch the compiler does not take is there
+// when it is included again outside it.
+TEST(Check, AFileIncludedInAnUntakenBranchIsIncludedAgainOutside) {
+  TempDir dir;
+  write_file(dir / "lib.glsl", "float level = 0.5;\n");
+  const std::string main = "void mainImage(out vec4 c, in vec2 f) { c = vec4(level); }\n";
+  EXPECT_EQ(diagnostics_of_scene(dir, "#ifdef NOT_DEFINED\n#include \"lib.glsl\"\n#endif\n#include \"lib.glsl\"\n" + main), "");
+  EXPECT_EQ(diagnostics_of_scene(dir, "#if 1\n#include \"lib.glsl\"\n#endif\n#include \"lib.glsl\"\n" + main), "")
+      << "taken twice, defined once";
+  EXPECT_EQ(diagnostics_of_scene(dir, "/*\n#include \"lib.glsl\"\n*/\n" + main),
+            (dir / "scene.frag").string() + ":4:50: error: 'level' : undeclared identifier\n");
+}
+
 // An error inside a conditional (an include guard) is the only error: no
 // "missing #endif", which glslang says when it stops at an error there.
 TEST(Check, ErrorInsideAnIncludeGuardIsTheOnlyError) {

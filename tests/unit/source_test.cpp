@@ -85,6 +85,54 @@ TEST(Source, EachFileIsIncludedOnce) {
   EXPECT_EQ(s.text.find("once_marker", first + 1), std::string::npos);
 }
 
+// The host expands includes before the compiler decides its #if branches:
+// an include inside one is kept behind a guard of its own, so that the
+// first one the compiler takes holds the file, and the rest are skipped.
+TEST(Source, AnIncludeInAnIfBranchIsGuardedAndOneOutsideIsOnce) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#ifdef NOT_DEFINED\n#include \"a.glsl\"\n#endif\n#include \"a.glsl\"\n"
+                                 "#include \"a.glsl\"\n#if 1\n#include \"a.glsl\"\n#endif\n" + std::string(kMain));
+  write_file(dir / "a.glsl", "float a_marker;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  // Twice: in the branch, and once more (guarded) outside it; then never.
+  const size_t first = s.text.find("a_marker");
+  ASSERT_NE(first, std::string::npos);
+  const size_t second = s.text.find("a_marker", first + 1);
+  ASSERT_NE(second, std::string::npos);
+  EXPECT_EQ(s.text.find("a_marker", second + 1), std::string::npos) << s.text;
+  EXPECT_EQ(std::count(s.files.begin(), s.files.end(), dir / "a.glsl"), 1) << "the file list names each file once";
+  EXPECT_EQ(origin_of(s, "a_marker"), std::make_pair((dir / "a.glsl").string(), 1));
+  EXPECT_EQ(s.locate(final_line_of(s, "#ifndef RM_INCLUDED_")), std::make_pair((dir / "scene.frag").string(), 2));
+}
+
+// A file's include guard is taken at its first include: what it includes
+// is not in a branch, and is included once (shaderlib's modules all have one).
+TEST(Source, AnIncludeGuardIsNoBranch) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#include \"a.glsl\"\n#include \"b.glsl\"\n" + std::string(kMain));
+  write_file(dir / "a.glsl", "// a\n#ifndef A_GLSL\n#define A_GLSL\n#include \"common.glsl\"\n#endif\n");
+  write_file(dir / "b.glsl", "/* b */\n  #  ifndef B_GLSL // why\n#define B_GLSL 1\n#include \"common.glsl\"\n#endif\n");
+  write_file(dir / "common.glsl", "float common_marker;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  const size_t first = s.text.find("common_marker");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(s.text.find("common_marker", first + 1), std::string::npos) << s.text;
+  EXPECT_EQ(s.text.find("RM_INCLUDED_"), std::string::npos) << s.text;
+}
+
+// Lines inside a /* */ comment are no directives, however they look.
+TEST(Source, AnIncludeInABlockCommentIsNone) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "/* gone for now:\n#include \"gone.glsl\"\n  #include \"a.glsl\"\n*/\n" + std::string(kMain));
+  write_file(dir / "a.glsl", "float a_marker;\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  EXPECT_EQ(s.text.find("a_marker"), std::string::npos);
+  EXPECT_EQ(origin_of(s, "#include \"gone.glsl\""), std::make_pair((dir / "scene.frag").string(), 2));
+}
+
 TEST(Source, CycleIsAnErrorAtTheIncludingLine) {
   TempDir dir;
   write_file(dir / "scene.frag", "#include \"a.glsl\"\n" + std::string(kMain));
@@ -104,6 +152,19 @@ TEST(Source, MissingIncludeNamesTheIncludingFileAndLineAndIsWatched) {
   EXPECT_EQ(s.errors[0].str(), (dir / "lib/a.glsl").string() + ":3:10: error: cannot find include 'gone.glsl'");
   // Creating the missing file must reload the scene, so it is watched.
   EXPECT_NE(std::find(s.watch.begin(), s.watch.end(), dir / "lib/gone.glsl"), s.watch.end());
+}
+
+// `#ifdef HAVE_NOISE` / `#include "noise.glsl"`: whether it is missing is
+// for the compiler's branch to say (Check.AMissingIncludeIsAnErrorOnlyWhereItsBranchIsTaken).
+TEST(Source, AMissingIncludeInAnIfBranchIsLeftToTheCompilerAndWatched) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#ifdef \\\nHAVE_NOISE\n  #include \"noise.glsl\"\n#endif\n" + std::string(kMain));
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  ASSERT_EQ(s.missing_includes.size(), 1u);
+  EXPECT_EQ(s.missing_includes[0].str(), (dir / "scene.frag").string() + ":3:12: error: cannot find include 'noise.glsl'");
+  EXPECT_EQ(origin_of(s, "#error rm_missing_include_0"), std::make_pair((dir / "scene.frag").string(), 3));
+  EXPECT_NE(std::find(s.watch.begin(), s.watch.end(), dir / "noise.glsl"), s.watch.end());
 }
 
 TEST(Source, IncludingADirectoryIsAnError) {
