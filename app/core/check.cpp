@@ -171,8 +171,12 @@ int column_in_line(const std::string& message, const std::string& line_text) {
     return at ? static_cast<int>(*at) + 1 : 0;
   }
   if (needle.empty()) return 0;
-  size_t at = line_text.find(needle);
-  return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
+  // A name as a word of its own, outside comments: 'g' is not the g of mainImage.
+  const std::string code = lexing::strip_comments(line_text);
+  std::optional<size_t> at;
+  if (lexing::is_name(needle)) at = lexing::find_word(code, needle);
+  else if (const size_t found = code.find(needle); found != std::string::npos) at = found;
+  return at ? static_cast<int>(*at) + 1 : 0;
 }
 
 // The first line (1-based) and column of `code`, the final text without its

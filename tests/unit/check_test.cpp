@@ -76,6 +76,15 @@ TEST(Check, AFileIncludedInAnUntakenBranchIsIncludedAgainOutside) {
             (dir / "scene.frag").string() + ":4:50: error: 'level' : undeclared identifier\n");
 }
 
+// glslang gives an undeclared name no column: the host finds it on the
+// line, as a word of its own and outside comments.
+TEST(Check, AQuotedNameIsFoundAsAWord) {
+  TempDir dir;
+  const std::string line = "void mainImage(out vec4 c, in vec2 f) { /* g */ c = vec4(g); }\n";
+  EXPECT_EQ(diagnostics_of_scene(dir, line), (dir / "scene.frag").string() + ":1:" +
+                                                 std::to_string(line.find("(g)") + 2) + ": error: 'g' : undeclared identifier\n");
+}
+
 // An error inside a conditional (an include guard) is the only error: no
 // "missing #endif", which glslang says when it stops at an error there.
 TEST(Check, ErrorInsideAnIncludeGuardIsTheOnlyError) {
