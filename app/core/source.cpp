@@ -29,6 +29,10 @@ namespace {
 
 constexpr int kMaxIncludeDepth = 256;
 
+// Put on the line of a #pragma channelN in an #if branch, for the compiler's
+// preprocessor to keep where it takes the branch (bind_channel_pragmas).
+constexpr std::string_view kChannelPragmaMark = " rm_channel_pragma_taken";
+
 // A file name the code gave, as an error quotes it: whole, unless it is
 // longer than any path can be (PATH_MAX), which only nonsense is.
 std::string quoted_path(std::string_view name) { return brief(name, PATH_MAX); }
@@ -525,28 +529,31 @@ class Preprocessor {
     }
     bool malformed = false;
     if (auto pragma = parse_channel_pragma(line, &malformed)) {
+      ChannelPragmaLine seen{body_map_.size(), in_branch(), pragma->channel, std::nullopt, {}};
       std::string why;
-      auto spec = malformed ? std::nullopt : parse_channel_spec(pragma->spec, path.parent_path(), &why);
-      if (!spec) {
-        error(file, line_no, pragma->column,
-              "#pragma channelN " + (malformed ? std::string("expects N in 0..3") : why));
-        return false;
-      }
-      if (!spec->path.empty()) {
-        out_.watch.push_back(spec->path);
-        if (spec->kind == ChannelSpec::Kind::Image && spec->shape == ChannelSpec::Shape::Cube)
-          for (const fs::path& face : cube_face_files(spec->path, fs_.exists))
-            if (face != spec->path) out_.watch.push_back(face);
-        if (!fs_.exists(spec->path)) {
-          const char* what = spec->kind == ChannelSpec::Kind::Pass ? "buffer pass" : "channel image";
-          error(file, line_no, pragma->column,
-                std::string("cannot find ") + what + " '" +
-                    quoted_path(spec->path.lexically_relative(path.parent_path()).string()) + "'");
-          return false;
+      seen.spec = malformed ? std::nullopt : parse_channel_spec(pragma->spec, path.parent_path(), &why);
+      if (!seen.spec) {
+        seen.problem = diagnostic(file, line_no, pragma->column,
+                                  "#pragma channelN " + (malformed ? std::string("expects N in 0..3") : why));
+      } else if (const fs::path& named = seen.spec->path; !named.empty()) {
+        out_.watch.push_back(named);
+        if (seen.spec->kind == ChannelSpec::Kind::Image && seen.spec->shape == ChannelSpec::Shape::Cube)
+          for (const fs::path& face : cube_face_files(named, fs_.exists))
+            if (face != named) out_.watch.push_back(face);
+        if (!fs_.exists(named)) {
+          const char* what = seen.spec->kind == ChannelSpec::Kind::Pass ? "buffer pass" : "channel image";
+          seen.problem = diagnostic(file, line_no, pragma->column,
+                                    std::string("cannot find ") + what + " '" +
+                                        quoted_path(named.lexically_relative(path.parent_path()).string()) + "'");
+          seen.spec.reset();
         }
       }
-      out_.channels[static_cast<size_t>(pragma->channel)] = *spec;
+      if (!seen.spec && !seen.in_branch) {
+        out_.errors.push_back(std::move(seen.problem));
+        return false;
+      }
       add_body_line("", Origin{file, line_no});  // the driver never sees it; lines keep their numbers
+      channel_pragmas_.push_back(std::move(seen));
       return true;
     }
     auto inc = parse_include(line, &malformed);
@@ -713,7 +720,52 @@ class Preprocessor {
     return !found.empty();
   }
 
+  // Binds the channels the #pragma channelN lines name, in the order of the
+  // text. One in an #if branch binds only where the compiler takes that
+  // branch (and its missing file is an error only there): the compiler's
+  // preprocessor, given the body with a mark on each such line, keeps the
+  // marks of those it takes. false after an error.
+  bool bind_channel_pragmas() {
+    std::vector<std::string_view> active_lines;  // the compiler's, for the body's lines
+    std::optional<std::string> active;
+    if (std::any_of(channel_pragmas_.begin(), channel_pragmas_.end(), [](const auto& p) { return p.in_branch; })) {
+      const std::string defines = defines_text();
+      std::string marked = defines;
+      marked.reserve(defines.size() + body_.size() + 32 * channel_pragmas_.size());
+      auto pragma = channel_pragmas_.begin();
+      for_each_line(body_, [&](std::string_view line, int number) {
+        marked += line;
+        if (pragma != channel_pragmas_.end() && pragma->body_line == static_cast<size_t>(number - 1)) {
+          if (pragma->in_branch) marked += kChannelPragmaMark;
+          ++pragma;
+        }
+        marked += '\n';
+        return true;
+      });
+      if ((active = active_code(marked))) {
+        for_each_line(*active, [&](std::string_view line, int) {
+          active_lines.push_back(line);
+          return true;
+        });
+        const auto skipped = std::min(active_lines.size(), static_cast<size_t>(std::count(defines.begin(), defines.end(), '\n')));
+        active_lines.erase(active_lines.begin(), active_lines.begin() + static_cast<std::ptrdiff_t>(skipped));
+      }
+    }
+    for (const ChannelPragmaLine& pragma : channel_pragmas_) {
+      if (pragma.in_branch && (pragma.body_line >= active_lines.size() ||
+                               active_lines[pragma.body_line].find(kChannelPragmaMark) == std::string_view::npos))
+        continue;  // a branch the compiler does not take (or its preprocessor fails, and says why)
+      if (!pragma.spec) {
+        out_.errors.push_back(pragma.problem);
+        return false;
+      }
+      out_.channels[static_cast<size_t>(pragma.channel)] = *pragma.spec;
+    }
+    return true;
+  }
+
   void assemble() {
+    if (!bind_channel_pragmas()) return;
     // The body's code, line for line: what the host looks for is read here.
     const std::string body_code = lexing::strip_comments(body_);
     std::string active;  // the preprocessor's text, where that decides the kind
@@ -887,6 +939,16 @@ class Preprocessor {
   std::unordered_map<std::string, int> file_index_;  // path -> index in out_.files
   std::unordered_set<int> included_for_certain_;     // files included outside any #if
   std::unordered_map<std::string, FileText> texts_;  // path -> the file's text, read once
+  // Each #pragma channelN line read, in the order of the text: one in an #if
+  // branch is bound once the compiler's preprocessor says it takes it.
+  struct ChannelPragmaLine {
+    size_t body_line;  // its index in body_
+    bool in_branch;
+    int channel;
+    std::optional<ChannelSpec> spec;  // nullopt: `problem` says why
+    Diagnostic problem;
+  };
+  std::vector<ChannelPragmaLine> channel_pragmas_;
   std::vector<bool> open_conditionals_;              // each #if block open: whether it is a branch
   std::vector<int> stack_;
   std::string body_;             // the user's lines, includes expanded, each ending in '\n'

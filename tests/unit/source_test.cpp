@@ -724,6 +724,44 @@ TEST(Source, MissingOrMalformedChannelPragmaIsAnErrorAtItsLine) {
   }
 }
 
+// A #pragma channelN in an #if branch binds only where the compiler takes
+// that branch, and its missing file is an error only there (the host read
+// every one, and the last won: `#else` always, and a missing file in a
+// branch not taken failed the scene).
+TEST(Source, AChannelPragmaInAnIfBranchBindsOnlyWhereTheCompilerTakesIt) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#ifdef HQ\n#pragma channel0 \"big.png\"\n#else\n#pragma channel0 \"small.png\"\n#endif\n"
+                                 "#if defined(USE_ROCK) && USE_ROCK > 1\n  #pragma channel1 \"rock.png\"\n#endif\n"
+                                 "#include \"look.glsl\"\n#pragma channel3 \"c.png\"\n" + std::string(kMain));
+  write_file(dir / "look.glsl", "#ifndef LOOK\n#define LOOK\n#pragma channel2 \"small.png\"\n"
+                                "#ifdef HQ\n#pragma channel3 \"big.png\"\n#endif\n#endif\n");
+  for (const char* name : {"big.png", "small.png", "c.png"}) write_file(dir / name, "x");
+  const auto with = [&](std::vector<Define> defines) {
+    SourceOptions options;
+    options.defines = std::move(defines);
+    return preprocess(dir / "scene.frag", options);
+  };
+  const Source plain = with({});
+  ASSERT_TRUE(plain.ok()) << join(plain.errors);
+  EXPECT_EQ(plain.channels[0].path, dir / "small.png");
+  EXPECT_EQ(plain.channels[1].kind, ChannelSpec::Kind::None);
+  EXPECT_EQ(plain.channels[2].path, dir / "small.png");
+  EXPECT_EQ(plain.channels[3].path, dir / "c.png");
+  EXPECT_NE(std::find(plain.watch.begin(), plain.watch.end(), dir / "rock.png"), plain.watch.end())
+      << "creating it, or taking its branch, reloads";
+  EXPECT_EQ(plain.text.find("rm_channel_pragma"), std::string::npos) << "the mark is for the preprocessor alone";
+
+  const Source hq = with({{"HQ", ""}, {"USE_ROCK", "1"}});
+  ASSERT_TRUE(hq.ok()) << join(hq.errors);
+  EXPECT_EQ(hq.channels[0].path, dir / "big.png");
+  EXPECT_EQ(hq.channels[1].kind, ChannelSpec::Kind::None);
+  EXPECT_EQ(hq.channels[3].path, dir / "c.png") << "a later pragma outside a branch still wins";
+
+  const Source rock = with({{"USE_ROCK", "2"}});
+  ASSERT_EQ(rock.errors.size(), 1u) << join(rock.errors);
+  EXPECT_EQ(rock.errors[0].str(), (dir / "scene.frag").string() + ":7:3: error: cannot find channel image 'rock.png'");
+}
+
 // Found by the fuzzer (tests/fuzz): a #version number too large for an int
 // made std::stoi throw, and the program abort.
 TEST(Source, HugeVersionNumberDoesNotThrow) {
