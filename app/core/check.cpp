@@ -615,6 +615,7 @@ std::string with_line_markers(const std::string& expanded, const Source& source,
 std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics* diags, LineMarkers markers) {
   GlslangRequest request;
   request.kind = GlslangRequest::Kind::Preprocess;
+  request.version_line = source.version_line;
   request.text = source.text;
   const GlslangReply child = ask_glslang(request);
   if (child.status != GlslangReply::Status::Ok) {
@@ -628,9 +629,10 @@ std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics
   return with_line_markers(child.output.substr(1), source, markers);
 }
 
-std::optional<std::string> active_code(const std::string& text) {
+std::optional<std::string> active_code(const std::string& text, const std::string& version_line) {
   GlslangRequest request;
   request.kind = GlslangRequest::Kind::Preprocess;
+  request.version_line = version_line;
   request.text = text;
   const GlslangReply child = ask_glslang(request);
   if (child.status != GlslangReply::Status::Ok || child.output.empty() || child.output[0] != '+') return std::nullopt;

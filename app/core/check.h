@@ -39,8 +39,11 @@ std::optional<std::string> expand_preprocessor(const Source& source, Diagnostics
                                                LineMarkers markers = LineMarkers::On);
 
 // `text` after glslang's preprocessor, within the validation limits: the code
-// the compiler would see. nullopt if the preprocessor fails.
-std::optional<std::string> active_code(const std::string& text);
+// the compiler would see. nullopt if the preprocessor fails. `version_line`
+// is text's first line, a Source's version_line (checked): the worker keeps
+// the built-in symbols of its #version, which glslang builds for a
+// preprocess too.
+std::optional<std::string> active_code(const std::string& text, const std::string& version_line);
 
 enum class LogFormat { Glslang, Mesa };
 // Turns a compiler or linker log into diagnostics located in the user's files.

@@ -62,7 +62,7 @@ std::vector<KnobValue> knob_values(const Source& source, const std::string* give
   // An undefined knob comes out of the preprocessor as its own name.
   const auto& table = knob_table();
   const auto active = given && !given->empty() ? std::optional<std::string>(*given)
-                                               : active_code(source.text + "\n" + knob_probes());
+                                               : active_code(source.text + "\n" + knob_probes(), source.version_line);
   if (!active) return out;
   for (size_t i = 0; i < table.size(); ++i) {
     // "rm_knob_probe_4 160;", or "rm_knob_probe_4(1.0 + 0.25);": glslang

@@ -742,7 +742,7 @@ class Preprocessor {
         marked += '\n';
         return true;
       });
-      if ((active = active_code(marked))) {
+      if ((active = active_code(marked, kHostVersionLine))) {
         for_each_line(*active, [&](std::string_view line, int) {
           active_lines.push_back(line);
           return true;
@@ -777,7 +777,7 @@ class Preprocessor {
     // Real Shadertoy shaders carry a main() for other hosts in an inactive
     // #ifdef: with both, the kind is decided on what the compiler would see.
     if (has_main && has_main_image) {
-      if (auto text = active_code(defines_text() + body_)) {
+      if (auto text = active_code(defines_text() + body_, kHostVersionLine)) {
         active = std::move(*text);
         code = active;
         has_main = lexing::has_call(code, "main", "void");
@@ -876,7 +876,7 @@ class Preprocessor {
       if (d.name != "u_scene") declared.back().size = size_after(d, at);
     }
     if (declared.empty()) return;
-    const std::optional<std::string> active = active_code(defines_text() + body_);
+    const std::optional<std::string> active = active_code(defines_text() + body_, kHostVersionLine);
     const std::string_view reads = active ? std::string_view(*active) : body_code;
     auto free_channel = [&]() -> int {
       for (int c = 3; c >= 0; --c)

@@ -170,7 +170,7 @@ UserUniforms find_user_uniforms(const Source& source, const std::string* given) 
   if (candidates.empty()) return found;
   std::vector<bool> live(source.line_map.size(), true);
   const auto active =
-      given && !given->empty() ? std::optional<std::string>(*given) : active_code(source.text);
+      given && !given->empty() ? std::optional<std::string>(*given) : active_code(source.text, source.version_line);
   if (active) {
     size_t l = 0;
     for (size_t at = 0; at <= active->size() && l < live.size(); ++l) {

@@ -226,6 +226,7 @@ std::optional<GlslangReply> serve(const GlslangRequest& request, int requester) 
     if (child.status == SandboxResult::Status::Crashed && after_error == AfterError::GoOn)
       child = run_sandboxed([&] { return parse_in_child(request.text, active, AfterError::Stop); }, limits);
   } else {
+    build_builtins_for(request.version_line);  // a preprocess builds them too
     child = run_sandboxed(
         [&] {
           std::string out;
