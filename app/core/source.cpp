@@ -1,6 +1,7 @@
 #include "core/source.h"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <string_view>
 #include <system_error>
@@ -179,34 +180,46 @@ struct DeclaredName {
   size_t column = 0;
 };
 std::vector<DeclaredName> declared_samplers(std::string_view code) {
-  std::vector<std::string_view> lines;
-  for_each_line(code, [&](std::string_view line, int) {
-    lines.push_back(line);
+  // The lines are read in order, one at a time: a declaration's names go on
+  // to later lines, never back (a vector of every line cost 10 million lines
+  // of blanks a second).
+  size_t next = 0;
+  int number = 0;
+  std::string_view line;
+  auto next_line = [&] {
+    if (next >= code.size()) return false;
+    size_t end = code.find('\n', next);
+    const size_t after = end == std::string_view::npos ? code.size() : end + 1;
+    if (end == std::string_view::npos) end = code.size();
+    const size_t stop = end > next && code[end - 1] == '\r' && end < code.size() ? end - 1 : end;
+    line = code.substr(next, stop - next);
+    next = after;
+    ++number;
     return true;
-  });
+  };
   std::vector<DeclaredName> names;
-  for (size_t first = 0; first < lines.size(); ++first) {
-    const std::string_view line = lines[first];
-    std::vector<std::pair<std::string_view, size_t>> words;  // the first three, with their columns
+  while (next_line()) {
+    std::array<std::pair<std::string_view, size_t>, 3> words;  // the first three, with their columns
+    size_t found = 0;
     lexing::any_word(line, [&](size_t begin, size_t end) {
-      words.emplace_back(line.substr(begin, end - begin), begin);
-      return words.size() >= 3;
+      words[found++] = {line.substr(begin, end - begin), begin};
+      return found >= words.size();
     });
-    if (words.size() < 2 || words[0].first != "uniform" || lexing::skip_blanks(line, 0) != words[0].second) continue;
+    if (found < 2 || words[0].first != "uniform" || lexing::skip_blanks(line, 0) != words[0].second) continue;
     const size_t type = lexing::is_precision(words[1].first) ? 2 : 1;
-    if (type >= words.size() || words[type].first.find("sampler") > 1) continue;  // sampler2D, isampler3D
+    if (type >= found || words[type].first.find("sampler") > 1) continue;  // sampler2D, isampler3D
     // The declarators: names at the top level, separated by commas, up to
     // ';' (an array's size in brackets is skipped). A word where a comma
     // belongs, anything else a declarator cannot hold, or a directive's line
     // ends them too: a declaration without its ';' takes no names from the
-    // code after it.
+    // code after it. A line the names went on to starts no declaration of its own.
     bool want_name = true, ended = false;
     int brackets = 0;
     size_t at = words[type].second + words[type].first.size();
-    for (size_t n = first; !ended && n < lines.size(); ++n, at = 0) {
-      const std::string_view text = lines[n];
+    for (bool first = true; !ended && (first || next_line()); first = false, at = 0) {
+      const std::string_view text = line;
       const size_t start = lexing::skip_blanks(text, 0);
-      if (n > first && start < text.size() && text[start] == '#') break;
+      if (!first && start < text.size() && text[start] == '#') break;
       for (; at < text.size() && !ended; ++at) {
         const char c = text[at];
         if (c == '[') ++brackets;
@@ -217,12 +230,11 @@ std::vector<DeclaredName> declared_samplers(std::string_view code) {
         else {
           size_t end = at;
           while (end < text.size() && lexing::is_word_char(text[end])) ++end;
-          names.push_back({text.substr(at, end - at), static_cast<int>(n) + 1, at});
+          names.push_back({text.substr(at, end - at), number, at});
           want_name = false;
           at = end - 1;
         }
       }
-      first = n;  // a line the names went on to starts no declaration of its own
     }
   }
   return names;
