@@ -423,6 +423,7 @@ class Preprocessor {
   struct FileText {
     std::string text, code;
     std::uintmax_t bytes = 0;  // on disk
+    bool has_nul = false;      // not a text file
     // The line of the `#ifndef NAME` of an include guard (`#define NAME`
     // next), which is taken at the file's first include: the includes inside
     // it are not in an #if branch of the includer's. 0: no guard.
@@ -455,7 +456,7 @@ class Preprocessor {
     }
     total_bytes_ += bytes;
     const std::string& text = read->text;
-    if (text.find('\0') != std::string::npos) {
+    if (read->has_nul) {
       int file = add_file(path);
       error(file, 0, 0, "not a text file (it contains NUL bytes)");
       return;
@@ -481,6 +482,7 @@ class Preprocessor {
     FileText read{std::move(*bytes), {}, 0};
     std::string& text = read.text;
     read.bytes = text.size();
+    read.has_nul = text.find('\0') != std::string::npos;
     if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
     // GLSL counts form feed and vertical tab as blanks, but glslang rejects
     // them: they become spaces, so lines and columns stay where they were.
