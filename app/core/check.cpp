@@ -453,10 +453,15 @@ std::optional<MacroExpansion> macro_spelling(const Source& source, std::string_v
 // An include not found in an #if branch that the compiler took: the
 // preprocessor left an #error of kMissingIncludeMark in its place.
 std::optional<Diagnostic> missing_include(const Source& source, std::string_view message) {
-  const std::string mark = "'#error' : " + std::string(kMissingIncludeMark);
-  if (!message.starts_with(mark)) return std::nullopt;
+  // glslang's wording, then Mesa's (where the driver takes a branch that
+  // glslang did not: a macro only Mesa defines, such as GL_MESA_shader_integer_functions).
+  std::string_view index_text;
+  for (const std::string_view said : {"'#error' : ", "#error "})
+    if (message.starts_with(said) && message.substr(said.size()).starts_with(kMissingIncludeMark))
+      index_text = message.substr(said.size() + std::string_view(kMissingIncludeMark).size());
+  if (index_text.empty()) return std::nullopt;
   size_t index = 0;
-  for (char c : message.substr(mark.size())) {
+  for (char c : index_text) {
     if (!lexing::is_digit(c) || index >= source.missing_includes.size()) return std::nullopt;
     index = index * 10 + static_cast<size_t>(c - '0');
   }
@@ -762,7 +767,11 @@ Diagnostics map_log(const std::string& log, const Source& source, LogFormat form
       const bool located = line.number() && line.take(":");
       const auto final_line = located ? line.number() : std::nullopt;
       const auto column = final_line && line.take("(") ? line.number() : std::nullopt;
-      const auto severity = column && line.take("): ") ? line.severity("error: ", "warning: ") : std::nullopt;
+      // Its preprocessor says "preprocessor error: " (an #error, an
+      // #include it does not know).
+      const bool after_place = column && line.take("): ");
+      if (after_place) line.take("preprocessor ");
+      const auto severity = after_place ? line.severity("error: ", "warning: ") : std::nullopt;
       if (severity) {
         out.push_back(locate(source, code, *severity, *final_line, *column, line.rest()));
         continue;

@@ -483,6 +483,30 @@ TEST(MapLog, MesaCompileMessagesAreMappedWithColumn) {
   EXPECT_EQ(d[0].str(), (dir / "lib.glsl").string() + ":2:7: error: syntax error, unexpected ';'");
 }
 
+// Mesa's preprocessor says "preprocessor error: " (these were kept whole and
+// placed at the scene alone), and the driver may take an #if branch glslang
+// did not: Mesa defines GL_MESA_shader_integer_functions, glslang does not,
+// so a missing include in that branch is Mesa's #error.
+TEST(MapLog, MesaPreprocessorErrorsAreMappedAndAMissingIncludeNamed) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#ifdef GL_MESA_shader_integer_functions\n  #include \"nothere.glsl\"\n#endif\n"
+                                 "#error mine\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Source s = preprocess(dir / "scene.frag", {});
+  ASSERT_TRUE(s.ok()) << join(s.errors);
+  int mark_line = 0, error_line = 0;
+  for (size_t i = 1; i <= s.line_map.size(); ++i) {
+    const std::string text = s.final_line_text(static_cast<int>(i));
+    if (text.starts_with("#error rm_missing_include_")) mark_line = static_cast<int>(i);
+    if (text == "#error mine") error_line = static_cast<int>(i);
+  }
+  ASSERT_GT(mark_line, 0);
+  const Diagnostics d = map_log("0:" + std::to_string(mark_line) + "(1): preprocessor error: #error rm_missing_include_0\n" +
+                                    "0:" + std::to_string(error_line) + "(1): preprocessor error: #error mine\n",
+                                s, LogFormat::Mesa);
+  EXPECT_EQ(join(d), (dir / "scene.frag").string() + ":2:12: error: cannot find include 'nothere.glsl'\n" +
+                         (dir / "scene.frag").string() + ":4:1: error: #error mine\n");
+}
+
 TEST(MapLog, LinkErrorWithoutLineNamesTheScene) {
   TempDir dir;
   write_file(dir / "scene.frag", "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
