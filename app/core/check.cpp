@@ -144,7 +144,8 @@ std::optional<size_t> unquoted_subject(std::string_view message, std::string_vie
 // where its search is quick enough). Where the message quotes a token, or
 // names the unexpected one, find that token's first spelling on the line.
 int column_in_line(const std::string& message, const std::string& line_text) {
-  if (const auto subject = unquoted_subject(message, lexing::strip_comments(line_text)))
+  const std::string code = lexing::strip_comments(line_text);  // the line, its comments blanked
+  if (const auto subject = unquoted_subject(message, code))
     return static_cast<int>(*subject) + 1;
   std::string needle;
   const size_t unexpected = message.find("unexpected ");
@@ -172,7 +173,6 @@ int column_in_line(const std::string& message, const std::string& line_text) {
   }
   if (needle.empty()) return 0;
   // A name as a word of its own, outside comments: 'g' is not the g of mainImage.
-  const std::string code = lexing::strip_comments(line_text);
   std::optional<size_t> at;
   if (lexing::is_name(needle)) at = lexing::find_word(code, needle);
   else if (const size_t found = code.find(needle); found != std::string::npos) at = found;
