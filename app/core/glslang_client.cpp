@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -128,7 +129,14 @@ class Worker {
 
 }  // namespace
 
+namespace {
+std::atomic<long> requests_asked{0};
+}
+
+long glslang_requests() { return requests_asked.load(); }
+
 GlslangReply ask_glslang(const GlslangRequest& request) {
+  ++requests_asked;
   // Never destroyed: at exit the socket closes with the process, and the
   // worker, reading its end, ends too.
   static Worker& worker = *new Worker;

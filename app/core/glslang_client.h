@@ -13,6 +13,10 @@ namespace rm {
 // any thread; requests from several threads take turns.
 GlslangReply ask_glslang(const GlslangRequest& request);
 
+// How many requests this process has asked of its worker: each is a round
+// trip (tests count those a step makes).
+long glslang_requests();
+
 // Starts the worker and has it build glslang's built-in symbols for
 // `version_line`, on a thread of its own, while the caller opens its window
 // or display: the first shader then waits for neither (about 50 ms). A

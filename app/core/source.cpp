@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <deque>
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
@@ -153,20 +154,40 @@ bool redeclares_frag_coord(std::string_view code) {
   return false;
 }
 
-// Calls line(text, number) for each line of `text` (1-based numbers; "\r\n"
-// ends a line as "\n" does) until it returns false.
+// The lines of a text, one at a time, in order (1-based numbers; "\r\n"
+// ends a line as "\n" does, and a last "\n" starts no line of its own).
+// Views: a text of 10 million lines is not copied.
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text) : text_(text) {}
+  // Moves to the next line; false past the last.
+  bool next() {
+    if (next_ >= text_.size()) return false;
+    size_t end = text_.find('\n', next_);
+    const size_t after = end == std::string_view::npos ? text_.size() : end + 1;
+    if (end == std::string_view::npos) end = text_.size();
+    const size_t stop = end > next_ && text_[end - 1] == '\r' && end < text_.size() ? end - 1 : end;
+    line_ = text_.substr(next_, stop - next_);
+    next_ = after;
+    ++number_;
+    return true;
+  }
+  std::string_view line() const { return line_; }
+  int number() const { return number_; }
+
+ private:
+  std::string_view text_;
+  std::string_view line_;
+  size_t next_ = 0;
+  int number_ = 0;
+};
+
+// Calls line(text, number) for each line of `text` (as LineCursor reads
+// them) until it returns false.
 template <typename Line>
 void for_each_line(std::string_view text, Line line) {
-  int number = 0;
-  size_t begin = 0;
-  while (begin < text.size()) {
-    size_t end = text.find('\n', begin);
-    const size_t next = end == std::string_view::npos ? text.size() : end + 1;
-    if (end == std::string_view::npos) end = text.size();
-    const size_t stop = end > begin && text[end - 1] == '\r' && end < text.size() ? end - 1 : end;
-    if (!line(text.substr(begin, stop - begin), ++number)) return;
-    begin = next;
-  }
+  for (LineCursor lines(text); lines.next();)
+    if (!line(lines.line(), lines.number())) return;
 }
 
 // The names that sampler declarations of `code` declare (`uniform
@@ -183,22 +204,10 @@ std::vector<DeclaredName> declared_samplers(std::string_view code) {
   // The lines are read in order, one at a time: a declaration's names go on
   // to later lines, never back (a vector of every line cost 10 million lines
   // of blanks a second).
-  size_t next = 0;
-  int number = 0;
-  std::string_view line;
-  auto next_line = [&] {
-    if (next >= code.size()) return false;
-    size_t end = code.find('\n', next);
-    const size_t after = end == std::string_view::npos ? code.size() : end + 1;
-    if (end == std::string_view::npos) end = code.size();
-    const size_t stop = end > next && code[end - 1] == '\r' && end < code.size() ? end - 1 : end;
-    line = code.substr(next, stop - next);
-    next = after;
-    ++number;
-    return true;
-  };
+  LineCursor lines(code);
   std::vector<DeclaredName> names;
-  while (next_line()) {
+  while (lines.next()) {
+    const std::string_view line = lines.line();
     std::array<std::pair<std::string_view, size_t>, 3> words;  // the first three, with their columns
     size_t found = 0;
     lexing::any_word(line, [&](size_t begin, size_t end) {
@@ -216,8 +225,8 @@ std::vector<DeclaredName> declared_samplers(std::string_view code) {
     bool want_name = true, ended = false;
     int brackets = 0;
     size_t at = words[type].second + words[type].first.size();
-    for (bool first = true; !ended && (first || next_line()); first = false, at = 0) {
-      const std::string_view text = line;
+    for (bool first = true; !ended && (first || lines.next()); first = false, at = 0) {
+      const std::string_view text = lines.line();
       const size_t start = lexing::skip_blanks(text, 0);
       if (!first && start < text.size() && text[start] == '#') break;
       for (; at < text.size() && !ended; ++at) {
@@ -230,7 +239,7 @@ std::vector<DeclaredName> declared_samplers(std::string_view code) {
         else {
           size_t end = at;
           while (end < text.size() && lexing::is_word_char(text[end])) ++end;
-          names.push_back({text.substr(at, end - at), number, at});
+          names.push_back({text.substr(at, end - at), lines.number(), at});
           want_name = false;
           at = end - 1;
         }
@@ -737,38 +746,29 @@ class Preprocessor {
   // Binds the channels the #pragma channelN lines name, in the order of the
   // text. One in an #if branch binds only where the compiler takes that
   // branch (and its missing file is an error only there): the compiler's
-  // preprocessor, given the body with a mark on each such line, keeps the
-  // marks of those it takes. false after an error.
+  // preprocessor keeps the mark compiler_input() puts on its line where it
+  // takes it. false after an error.
   bool bind_channel_pragmas() {
-    std::vector<std::string_view> active_lines;  // the compiler's, for the body's lines
-    std::optional<std::string> active;
+    std::vector<bool> taken(channel_pragmas_.size(), true);
     if (std::any_of(channel_pragmas_.begin(), channel_pragmas_.end(), [](const auto& p) { return p.in_branch; })) {
+      const std::optional<std::string>& active = preprocessed(compiler_input());
+      // The compiler's lines keep their places: the body's line n is the
+      // active text's line n after those of the defines.
+      LineCursor lines(active ? std::string_view(*active) : std::string_view());
       const std::string defines = defines_text();
-      std::string marked = defines;
-      marked.reserve(defines.size() + body_.size() + 32 * channel_pragmas_.size());
-      auto pragma = channel_pragmas_.begin();
-      for_each_line(body_, [&](std::string_view line, int number) {
-        marked += line;
-        if (pragma != channel_pragmas_.end() && pragma->body_line == static_cast<size_t>(number - 1)) {
-          if (pragma->in_branch) marked += kChannelPragmaMark;
-          ++pragma;
-        }
-        marked += '\n';
-        return true;
-      });
-      if ((active = active_code(marked, kHostVersionLine))) {
-        for_each_line(*active, [&](std::string_view line, int) {
-          active_lines.push_back(line);
-          return true;
-        });
-        const auto skipped = std::min(active_lines.size(), static_cast<size_t>(std::count(defines.begin(), defines.end(), '\n')));
-        active_lines.erase(active_lines.begin(), active_lines.begin() + static_cast<std::ptrdiff_t>(skipped));
+      const int skipped = static_cast<int>(std::count(defines.begin(), defines.end(), '\n'));
+      bool more = true;
+      for (size_t i = 0; i < channel_pragmas_.size(); ++i) {
+        if (!channel_pragmas_[i].in_branch) continue;
+        const int wanted = skipped + static_cast<int>(channel_pragmas_[i].body_line) + 1;
+        while (more && lines.number() < wanted) more = lines.next();
+        // A branch the compiler does not take (or its preprocessor fails, and says why).
+        taken[i] = more && lines.line().find(kChannelPragmaMark) != std::string_view::npos;
       }
     }
-    for (const ChannelPragmaLine& pragma : channel_pragmas_) {
-      if (pragma.in_branch && (pragma.body_line >= active_lines.size() ||
-                               active_lines[pragma.body_line].find(kChannelPragmaMark) == std::string_view::npos))
-        continue;  // a branch the compiler does not take (or its preprocessor fails, and says why)
+    for (size_t i = 0; i < channel_pragmas_.size(); ++i) {
+      const ChannelPragmaLine& pragma = channel_pragmas_[i];
+      if (!taken[i]) continue;
       if (!pragma.spec) {
         out_.errors.push_back(pragma.problem);
         return false;
@@ -778,12 +778,42 @@ class Preprocessor {
     return true;
   }
 
+  // What the compiler's preprocessor is asked to read: defines_text(), then
+  // the body, with a mark on the line of each #pragma channelN in an #if
+  // branch (a word alone on a line that is blank otherwise, which nothing
+  // the host looks for reads).
+  std::string compiler_input() {
+    std::string text = defines_text();
+    text.reserve(text.size() + body_.size() + kChannelPragmaMark.size() * channel_pragmas_.size());
+    auto pragma = channel_pragmas_.begin();
+    for_each_line(body_, [&](std::string_view line, int number) {
+      text += line;
+      if (pragma != channel_pragmas_.end() && pragma->body_line == static_cast<size_t>(number - 1)) {
+        if (pragma->in_branch) text += kChannelPragmaMark;
+        ++pragma;
+      }
+      text += '\n';
+      return true;
+    });
+    return text;
+  }
+
+  // active_code() of `input`, asked of glslang's worker once for the same
+  // text: the channel pragmas, the kind and glslViewer's samplers may each
+  // need it, and each ask is a round trip to the worker. The answers stay
+  // where they are until the source is assembled.
+  const std::optional<std::string>& preprocessed(std::string input) {
+    for (const auto& [asked, active] : preprocessed_)
+      if (asked == input) return active;
+    std::optional<std::string> active = active_code(input, kHostVersionLine);
+    return preprocessed_.emplace_back(std::move(input), std::move(active)).second;
+  }
+
   void assemble() {
     if (!bind_channel_pragmas()) return;
     // The body's code, line for line: what the host looks for is read here.
     const std::string body_code = lexing::strip_comments(body_);
-    std::string active;  // the preprocessor's text, where that decides the kind
-    std::string_view code = body_code;
+    std::string_view code = body_code;  // or the preprocessor's text, where that decides the kind
     bool has_main = lexing::has_call(code, "main", "void");
     bool has_main_image = lexing::has_call(code, "mainImage");
     const bool has_main_cubemap = lexing::has_call(code, "mainCubemap");
@@ -791,9 +821,8 @@ class Preprocessor {
     // Real Shadertoy shaders carry a main() for other hosts in an inactive
     // #ifdef: with both, the kind is decided on what the compiler would see.
     if (has_main && has_main_image) {
-      if (auto text = active_code(defines_text() + body_, kHostVersionLine)) {
-        active = std::move(*text);
-        code = active;
+      if (const std::optional<std::string>& text = preprocessed(compiler_input())) {
+        code = *text;
         has_main = lexing::has_call(code, "main", "void");
         has_main_image = lexing::has_call(code, "mainImage");
       }
@@ -890,7 +919,7 @@ class Preprocessor {
       if (d.name != "u_scene") declared.back().size = size_after(d, at);
     }
     if (declared.empty()) return;
-    const std::optional<std::string> active = active_code(defines_text() + body_, kHostVersionLine);
+    const std::optional<std::string>& active = preprocessed(compiler_input());
     const std::string_view reads = active ? std::string_view(*active) : body_code;
     auto free_channel = [&]() -> int {
       for (int c = 3; c >= 0; --c)
@@ -963,6 +992,7 @@ class Preprocessor {
     Diagnostic problem;
   };
   std::vector<ChannelPragmaLine> channel_pragmas_;
+  std::deque<std::pair<std::string, std::optional<std::string>>> preprocessed_;  // inputs, and their active_code()
   std::vector<bool> open_conditionals_;              // each #if block open: whether it is a branch
   std::vector<int> stack_;
   std::string body_;             // the user's lines, includes expanded, each ending in '\n'

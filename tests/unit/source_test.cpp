@@ -13,6 +13,7 @@
 #include <climits>
 
 #include "core/files.h"
+#include "core/glslang_client.h"
 #include "core/glslviewer_passes.h"
 #include "support.h"
 
@@ -760,6 +761,26 @@ TEST(Source, AChannelPragmaInAnIfBranchBindsOnlyWhereTheCompilerTakesIt) {
   const Source rock = with({{"USE_ROCK", "2"}});
   ASSERT_EQ(rock.errors.size(), 1u) << join(rock.errors);
   EXPECT_EQ(rock.errors[0].str(), (dir / "scene.frag").string() + ":7:3: error: cannot find channel image 'rock.png'");
+}
+
+// A scene whose kind and whose channel pragmas both depend on its #if
+// branches asks glslang's preprocessor once for both: each ask is a round
+// trip to the worker, on every reload.
+TEST(Source, TheKindAndTheChannelPragmasAskThePreprocessorOnce) {
+  TempDir dir;
+  write_file(dir / "scene.frag", "#ifdef HQ\n#pragma channel0 \"big.png\"\n#endif\n" + std::string(kMain) +
+                                     "#ifdef GLSLVIEWER\nvoid main() { mainImage(gl_FragColor, gl_FragCoord.xy); }\n#endif\n");
+  write_file(dir / "big.png", "x");
+  for (const bool hq : {false, true}) {
+    SourceOptions options;
+    if (hq) options.defines = {{"HQ", ""}};
+    const long before = glslang_requests();
+    const Source s = preprocess(dir / "scene.frag", options);
+    ASSERT_TRUE(s.ok()) << join(s.errors);
+    EXPECT_EQ(s.kind, ShaderKind::Shadertoy);
+    EXPECT_EQ(s.channels[0].kind, hq ? ChannelSpec::Kind::Image : ChannelSpec::Kind::None);
+    EXPECT_EQ(glslang_requests() - before, 1) << (hq ? "with" : "without") << " HQ";
+  }
 }
 
 // Found by the fuzzer (tests/fuzz): a #version number too large for an int
