@@ -1,6 +1,7 @@
 #include "core/project.h"
 
 #include <algorithm>
+#include <chrono>
 #include <tuple>
 #include <utility>
 
@@ -186,6 +187,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
 ReloadStatus Project::prepare_without_compiling() { return prepare({}, {}, {}, false); }
 
 ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelled, const RunJobs& run, bool compile) {
+  const auto begun = std::chrono::steady_clock::now();
   pending_.reset();
   Diagnostics shown = std::exchange(diagnostics_, files_.warnings ? files_.warnings() : Diagnostics{});
   bool needs_compile = false;
@@ -270,6 +272,7 @@ ReloadStatus Project::prepare(const OnBuilt& on_built, const Cancelled& cancelle
     return ReloadStatus::Failed;
   }
   pending_ = PendingSwap{walk.reached, walk.cube_size, walk.buffer_size, std::move(swapped)};
+  times_.wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begun).count();
   return ReloadStatus::Swapped;
 }
 

@@ -143,6 +143,7 @@ std::optional<Scene::ExactJob> Scene::exact_job() const {
 }
 
 Scene::ExactResult Scene::build_exact(const ExactJob& job, const OnBuilt& on_built, const Cancelled& cancelled) {
+  const auto begun = std::chrono::steady_clock::now();
   ExactResult out;
   out.path = job.path;
   out.generation = job.generation;
@@ -154,6 +155,7 @@ Scene::ExactResult Scene::build_exact(const ExactJob& job, const OnBuilt& on_bui
   const auto start = std::chrono::steady_clock::now();
   if (on_built) on_built(job.path, *built.program, job.source);
   out.times.warm = ms_since(start);
+  out.times.wall = ms_since(begun);
   out.built = Built{job.source.text, std::move(*built.program), job.source, std::move(built.active)};
   return out;
 }

@@ -19,8 +19,11 @@ struct ReloadTimes {
   double validate = 0;    // glslang, in its sandboxed child
   double driver = 0;      // the driver's compile and link
   double warm = 0;        // the on_built hook: the window's warm-up draw
+  // The whole build by the wall clock: its stages may overlap (a project's
+  // passes are linked side by side) or leave time between them.
+  double wall = 0;
   ReloadTimes& operator+=(const ReloadTimes& o) {
-    preprocess += o.preprocess, validate += o.validate, driver += o.driver, warm += o.warm;
+    preprocess += o.preprocess, validate += o.validate, driver += o.driver, warm += o.warm, wall += o.wall;
     return *this;
   }
 };

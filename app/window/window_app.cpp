@@ -520,6 +520,7 @@ class WindowApp {
                   << t.driver << " ms, warm-up " << t.warm << " ms";
         // The passes' links and warm-ups ran side by side: their times are sums.
         if (job_threads > 1) std::cerr << ", the last two summed over " << job_threads << " threads";
+        if (t.wall > 0) std::cerr << "; built in " << t.wall << " ms";
         std::cerr << ')';
       }
       std::cerr << " at " << steady_ns() << '\n';

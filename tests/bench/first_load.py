@@ -35,7 +35,7 @@ RUNS = 3
 BUILDING = re.compile(r"building generation 1 at (\d+)")
 BUILT = re.compile(r"reload ok generation 1 \(rebuilt:([^;]*); preprocess ([0-9.e-]+) ms, glslang ([0-9.e-]+) ms, "
                    r"driver compile\+link ([0-9.e-]+) ms, warm-up ([0-9.e-]+) ms"
-                   r"(?:, the last two summed over (\d+) threads)?\) at (\d+)")
+                   r"(?:, the last two summed over (\d+) threads)?(?:; built in [0-9.e-]+ ms)?\) at (\d+)")
 
 
 def shader_of(path):

@@ -41,7 +41,7 @@ from harness import save_by_rename, wait_for  # noqa: E402
 
 FRESH, BACK = 5, 3
 RELOAD = re.compile(r"reload ok generation (\d+) \((rebuilt|tweaked):[^;]*; preprocess ([0-9.e-]+) ms, glslang ([0-9.e-]+) ms, "
-                    r"driver compile\+link ([0-9.e-]+) ms, warm-up ([0-9.e-]+) ms[,)]")
+                    r"driver compile\+link ([0-9.e-]+) ms, warm-up ([0-9.e-]+) ms[,;)]")
 LAST_NUMBER = re.compile(r"\b(\d+\.\d+)(?!.*\b\d+\.\d+)", re.S)
 FIRST_DRAW = re.compile(r"first draw of generation (\d+): a \d+x\d+ tile, ([0-9.e-]+) ms")
 PRESENTED = re.compile(r"presented generation (\d+) at (\d+)")

@@ -182,6 +182,12 @@ def main():
     check("the tweak's picture is the edited scene's", ok, detail)
     check("its exact program follows",
           wait_for(lambda: "reload ok generation 5 (rebuilt: scene.frag;" in stderr(), timeout=20), stderr())
+    # One pass is built one stage after another: the build's wall time holds them all.
+    built = re.search(r"reload ok generation 5 \(rebuilt: scene\.frag; preprocess ([0-9.e-]+) ms, glslang ([0-9.e-]+) "
+                      r"ms, driver compile\+link ([0-9.e-]+) ms, warm-up ([0-9.e-]+) ms; built in ([0-9.e-]+) ms\)",
+                      stderr())
+    check("-v gives the build's wall time, which holds its stages",
+          built and sum(map(float, built.groups()[:4])) <= float(built.group(5)) < 60000, stderr())
     wait_for(lambda: "presented generation 5" in stderr())
     ok, detail = matches_render(take_shot(), tweaked, work)
     check("... and draws the same picture", ok, detail)
