@@ -458,16 +458,20 @@ class Preprocessor {
       } else {
         // Missing, or not a file, it is the shader's error; a machine's
         // failure (no descriptor left) leaves the shader unchecked.
-        error(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + why.message);
-        out_.errors.back().unchecked = why.unchecked;
+        Diagnostic cannot =
+            diagnostic(from_file, from_line, from_col, "cannot read include '" + path.string() + "': " + why.message);
+        cannot.unchecked = why.unchecked;
+        if (in_branch() && !why.unchecked) error_where_taken(std::move(cannot), Origin{from_file, from_line});
+        else out_.errors.push_back(std::move(cannot));
       }
       return;
     }
     total_bytes_ += bytes;
     const std::string& text = read->text;
     if (read->has_nul) {
-      int file = add_file(path);
-      error(file, 0, 0, "not a text file (it contains NUL bytes)");
+      Diagnostic binary = diagnostic(add_file(path), 0, 0, "not a text file (it contains NUL bytes)");
+      if (from_file >= 0 && in_branch()) error_where_taken(std::move(binary), Origin{from_file, from_line});
+      else out_.errors.push_back(std::move(binary));
       return;
     }
 
@@ -608,10 +612,7 @@ class Preprocessor {
         error(file, line_no, inc.column, missing);
         return false;
       }
-      // In an #if branch, which the compiler may not take: its error then.
-      add_body_line("#error " + std::string(kMissingIncludeMark) + std::to_string(out_.missing_includes.size()),
-                    Origin{file, line_no});
-      out_.missing_includes.push_back(diagnostic(file, line_no, inc.column, missing));
+      error_where_taken(diagnostic(file, line_no, inc.column, missing), Origin{file, line_no});
       return true;
     }
     auto existing = file_index_.find(target->string());
@@ -657,6 +658,14 @@ class Preprocessor {
     else if (directive == "endif" && !open_conditionals_.empty()) open_conditionals_.pop_back();
   }
   // Whether the line being read is in an #if branch the compiler may not take.
+  // An include's `problem` in an #if branch, which the compiler may not
+  // take: an #error in its place, at `at`, that the compiler meets only if
+  // it does, and names `problem` then (check.cpp's missing_include()).
+  void error_where_taken(Diagnostic problem, Origin at) {
+    add_body_line("#error " + std::string(kMissingIncludeMark) + std::to_string(out_.missing_includes.size()), at);
+    out_.missing_includes.push_back(std::move(problem));
+  }
+
   bool in_branch() const {
     return std::find(open_conditionals_.begin(), open_conditionals_.end(), true) != open_conditionals_.end();
   }

@@ -105,9 +105,10 @@ struct Source {
   // Kind::None where nothing is named. A --channelN wins.
   std::array<ChannelSpec, 4> channels;
   Diagnostics errors;              // preprocessing errors; text is unusable if any
-  // Includes not found in an #if branch: the text holds `#error
-  // rm_missing_include_N` there (kMissingIncludeMark), for the Nth of these,
-  // which the compiler says only if it takes that branch.
+  // Includes in an #if branch that are not found or cannot be read (a FIFO,
+  // a directory, NUL bytes): the text holds `#error rm_missing_include_N`
+  // there (kMissingIncludeMark), for the Nth of these, which the compiler
+  // says only if it takes that branch.
   Diagnostics missing_includes;
 
   bool ok() const { return errors.empty(); }

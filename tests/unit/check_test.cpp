@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include "core/scene.h"
 #include "support.h"
 
@@ -61,6 +63,39 @@ TEST(Check, AMissingIncludeIsAnErrorOnlyWhereItsBranchIsTaken) {
   EXPECT_EQ(diagnostics({{"HAVE_NOISE", "2"}}),
             (dir / "scene.frag").string() + ":3:12: error: cannot find include 'noise.glsl'\n");
   EXPECT_EQ(diagnostics({{"HAVE_NOISE", "1"}}), "");
+}
+
+// An include that cannot be read (a FIFO, a directory, NUL bytes) is, like
+// a missing one, an error only where the compiler takes its branch; outside
+// any branch it is one at once. A FIFO is refused by what it is, not read.
+TEST(Check, AnUnreadableIncludeIsAnErrorOnlyWhereItsBranchIsTaken) {
+  TempDir dir;
+  ASSERT_EQ(mkfifo((dir / "pipe.glsl").c_str(), 0600), 0);
+  std::filesystem::create_directories(dir / "dir.glsl");
+  write_file(dir / "nul.glsl", std::string("float a;\0\n", 11));
+  write_file(dir / "scene.frag", "#ifdef USE_PIPE\n#include \"pipe.glsl\"\n#endif\n#if LOOK > 1\n#include \"nul.glsl\"\n"
+                                 "#elif LOOK == 1\n  #include \"dir.glsl\"\n#endif\n"
+                                 "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  auto diagnostics = [&](std::vector<Define> defines) {
+    SourceOptions options;
+    options.defines = std::move(defines);
+    Diagnostics diags;
+    check_scene(dir / "scene.frag", options, &diags);
+    return join(diags);
+  };
+  const std::string scene = (dir / "scene.frag").string();
+  EXPECT_EQ(diagnostics({}), "");
+  EXPECT_EQ(diagnostics({{"USE_PIPE", ""}}), scene + ":2:10: error: cannot read include '" +
+                                                 (dir / "pipe.glsl").string() +
+                                                 "': is a named pipe (FIFO), not a regular file\n");
+  EXPECT_EQ(diagnostics({{"LOOK", "2"}}), (dir / "nul.glsl").string() + ": error: not a text file (it contains NUL bytes)\n");
+  EXPECT_EQ(diagnostics({{"LOOK", "1"}}),
+            scene + ":7:12: error: cannot read include '" + (dir / "dir.glsl").string() + "': is a directory\n");
+  write_file(dir / "plain.frag", "#include \"dir.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
+  Diagnostics diags;
+  check_scene(dir / "plain.frag", {}, &diags);
+  EXPECT_EQ(join(diags), (dir / "plain.frag").string() + ":1:10: error: cannot read include '" +
+                             (dir / "dir.glsl").string() + "': is a directory\n");
 }
 
 // A file included first in a branch the compiler does not take is there
