@@ -127,11 +127,9 @@ class Worker {
   int socket_ = -1;
 };
 
-}  // namespace
+std::atomic<long> requests_asked{0};  // glslang_requests()
 
-namespace {
-std::atomic<long> requests_asked{0};
-}
+}  // namespace
 
 long glslang_requests() { return requests_asked.load(); }
 

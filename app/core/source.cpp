@@ -657,7 +657,6 @@ class Preprocessor {
     if (directive == "if" || directive == "ifdef" || directive == "ifndef") open_conditionals_.push_back(!guard);
     else if (directive == "endif" && !open_conditionals_.empty()) open_conditionals_.pop_back();
   }
-  // Whether the line being read is in an #if branch the compiler may not take.
   // An include's `problem` in an #if branch, which the compiler may not
   // take: an #error in its place, at `at`, that the compiler meets only if
   // it does, and names `problem` then (check.cpp's missing_include()).
@@ -666,6 +665,7 @@ class Preprocessor {
     out_.missing_includes.push_back(std::move(problem));
   }
 
+  // Whether the line being read is in an #if branch the compiler may not take.
   bool in_branch() const {
     return std::find(open_conditionals_.begin(), open_conditionals_.end(), true) != open_conditionals_.end();
   }
