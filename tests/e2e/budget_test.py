@@ -674,7 +674,7 @@ def no_compile_in_the_window(work):
     save_by_rename(scene, SLOW_TO_BUILD.replace("SEED", seed).replace("c = vec4(uv,", "c = vec4(uv.yx,"))
     shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=60)
     log = open(err).read()
-    built = re.findall(r"reload ok generation (\d) \(rebuilt:[^;]*; .*?warm-up ([\d.]+) ms[,)]", log)
+    built = re.findall(r"reload ok generation (\d) \(rebuilt:[^;]*; .*?warm-up ([\d.]+) ms[,;)]", log)
     first = re.findall(r"first draw of generation (\d): a \d+x\d+ tile, ([\d.]+) ms", log)
     check("... and a code edit's program is shown", shown and len(built) == 2 and len(first) == 2, log[-800:])
     if shown and len(built) == 2 and len(first) == 2:
@@ -711,7 +711,7 @@ def first_draws_of_new_passes(proc, err, window, buffers, which, passes):
     each took less than the warm-up's time over 4 * passes, as they do
     when the window finds the code the builder generated."""
     log = open(err).read()
-    warm = re.search(r"reload ok generation 1 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms([,)].*)", log)
+    warm = re.search(r"reload ok generation 1 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms([,;)].*)", log)
     first = re.findall(rf"first draw of (?:(?:{buffers}) in )?generation 1: a \d+x\d+ tile, ([\d.]+) ms", log)
     check(f"... and logs its warm-up and {which} first draws", warm and len(first) == passes, log[-800:])
     # Each slow to compile: the background builder's contexts, made while
@@ -765,7 +765,7 @@ def no_compile_in_the_window_for_a_changed_channel(work, bound="keyboard", held=
         "c = vec4(uv,", f"c = texture(iChannel0, uv) + {reads}vec4(uv,"))
     shown = wait_for(lambda: "presented generation 2" in open(err).read(), timeout=60)
     log = open(err).read()
-    warm = re.search(r"reload ok generation 2 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms[,)]", log)
+    warm = re.search(r"reload ok generation 2 \(rebuilt:[^;]*;.*?warm-up ([\d.]+) ms[,;)]", log)
     first = re.search(r"first draw of generation 2: a \d+x\d+ tile, ([\d.]+) ms", log)
     check(f"... and a save that reads {bound} is shown", shown and warm and first, log[-800:])
     if shown and warm and first:
