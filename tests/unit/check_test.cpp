@@ -47,18 +47,21 @@ TEST(Check, EachLineEndingEndsALineAndErrorsKeepTheirLines) {
   EXPECT_EQ(diags[1].str(), (dir / "scene.frag").string() + ":6:13: error: 'nope' : undeclared identifier");
 }
 
+// check_scene's diagnostics for `scene` with `defines`, one a line.
+std::string checked(const fs::path& scene, std::vector<Define> defines = {}) {
+  SourceOptions options;
+  options.defines = std::move(defines);
+  Diagnostics diags;
+  check_scene(scene, options, &diags);
+  return join(diags);
+}
+
 // The compiler's #if decides, even over a line continued by a backslash.
 TEST(Check, AMissingIncludeIsAnErrorOnlyWhereItsBranchIsTaken) {
   TempDir dir;
   write_file(dir / "scene.frag", "#if defined(HAVE_NOISE) && \\\n    HAVE_NOISE > 1\n  #include \"noise.glsl\"\n#endif\n"
                                  "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
-  auto diagnostics = [&](std::vector<Define> defines) {
-    SourceOptions options;
-    options.defines = std::move(defines);
-    Diagnostics diags;
-    check_scene(dir / "scene.frag", options, &diags);
-    return join(diags);
-  };
+  auto diagnostics = [&](std::vector<Define> defines) { return checked(dir / "scene.frag", std::move(defines)); };
   EXPECT_EQ(diagnostics({}), "");
   EXPECT_EQ(diagnostics({{"HAVE_NOISE", "2"}}),
             (dir / "scene.frag").string() + ":3:12: error: cannot find include 'noise.glsl'\n");
@@ -76,13 +79,7 @@ TEST(Check, AnUnreadableIncludeIsAnErrorOnlyWhereItsBranchIsTaken) {
   write_file(dir / "scene.frag", "#ifdef USE_PIPE\n#include \"pipe.glsl\"\n#endif\n#if LOOK > 1\n#include \"nul.glsl\"\n"
                                  "#elif LOOK == 1\n  #include \"dir.glsl\"\n#endif\n"
                                  "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
-  auto diagnostics = [&](std::vector<Define> defines) {
-    SourceOptions options;
-    options.defines = std::move(defines);
-    Diagnostics diags;
-    check_scene(dir / "scene.frag", options, &diags);
-    return join(diags);
-  };
+  auto diagnostics = [&](std::vector<Define> defines) { return checked(dir / "scene.frag", std::move(defines)); };
   const std::string scene = (dir / "scene.frag").string();
   EXPECT_EQ(diagnostics({}), "");
   EXPECT_EQ(diagnostics({{"USE_PIPE", ""}}), scene + ":2:10: error: cannot read include '" +
@@ -92,10 +89,8 @@ TEST(Check, AnUnreadableIncludeIsAnErrorOnlyWhereItsBranchIsTaken) {
   EXPECT_EQ(diagnostics({{"LOOK", "1"}}),
             scene + ":7:12: error: cannot read include '" + (dir / "dir.glsl").string() + "': is a directory\n");
   write_file(dir / "plain.frag", "#include \"dir.glsl\"\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n");
-  Diagnostics diags;
-  check_scene(dir / "plain.frag", {}, &diags);
-  EXPECT_EQ(join(diags), (dir / "plain.frag").string() + ":1:10: error: cannot read include '" +
-                             (dir / "dir.glsl").string() + "': is a directory\n");
+  EXPECT_EQ(checked(dir / "plain.frag"), (dir / "plain.frag").string() + ":1:10: error: cannot read include '" +
+                                              (dir / "dir.glsl").string() + "': is a directory\n");
 }
 
 // A file included first in a branch the compiler does not take is there
